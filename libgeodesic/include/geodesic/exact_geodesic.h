@@ -1,0 +1,75 @@
+#pragma once
+// Exact discrete geodesic distances and shortest paths by window propagation (Mitchell, Mount and Papadimitriou;
+// Surazhsky et al. 2005), with window filtering (Xin and Wang 2009).
+
+#include <geodesic/mesh.h>
+#include <geodesic/surface_point.h>
+
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace geotri::geodesic {
+
+struct PropagationOptions {
+    /// Nothing farther than this is computed; farther points report +inf.
+    double max_distance = std::numeric_limits<double>::infinity();
+    /// When not empty, propagation ends as soon as every stop point's distance is final. Their distances (and
+    /// those of every point nearer than settled_radius()) are exact; farther points report +inf.
+    std::vector<SurfacePoint> stop_points;
+};
+
+/// Counters of the last propagation, for benchmarks and tuning.
+struct PropagationStats {
+    std::size_t windows_created = 0;     ///< windows that entered the queue
+    std::size_t windows_propagated = 0;  ///< windows carried across a face
+    std::size_t windows_pruned = 0;      ///< windows dropped as dominated by a vertex
+    std::size_t vertex_emissions = 0;    ///< saddle, boundary or source vertices that emitted windows
+    std::size_t queue_pushes = 0;
+    std::size_t queue_pops = 0;
+    std::size_t peak_queue_size = 0;
+    std::size_t window_bytes = 0;         ///< memory held by windows at the end of the propagation
+    bool stopped_early = false;          ///< ended by stop points or max_distance before the queue emptied
+};
+
+/// A reusable propagation over one mesh. Use one object per thread; the mesh must outlive it.
+/// Memory and reset cost grow with the region explored, not with the mesh, so that many small propagations on a
+/// large mesh stay cheap.
+class ExactGeodesic {
+public:
+    explicit ExactGeodesic(const Mesh& mesh);
+    ~ExactGeodesic();
+    ExactGeodesic(ExactGeodesic&&) noexcept;
+    ExactGeodesic& operator=(ExactGeodesic&&) noexcept;
+    ExactGeodesic(const ExactGeodesic&) = delete;
+    ExactGeodesic& operator=(const ExactGeodesic&) = delete;
+
+    /// Computes distances from the nearest of `sources` (at least one). Replaces the previous propagation.
+    /// Throws InvalidInput for an empty source list or a point that does not refer to the mesh.
+    void propagate(const std::vector<SurfacePoint>& sources, const PropagationOptions& options = {});
+
+    /// Exact distance of vertex v to the nearest source; +inf if unreachable or beyond the settled radius.
+    double distance(int vertex) const;
+    /// Exact distance of any surface point; +inf if unreachable or beyond the settled radius.
+    double distance(const SurfacePoint& point) const;
+    /// distance(v) for every vertex, in index order.
+    std::vector<double> vertex_distances() const;
+
+    /// The shortest path from the nearest source to `target`, both included, as a geodesic polyline (DESIGN.md §1).
+    /// Its length equals distance(target). Empty if the target is unreachable or beyond the settled radius.
+    std::vector<SurfacePoint> shortest_path(const SurfacePoint& target) const;
+
+    /// Every point nearer than this is exact: +inf after a complete propagation.
+    double settled_radius() const;
+    const PropagationStats& stats() const;
+
+private:
+    class Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Length of a polyline of surface points: the sum of the straight segments between consecutive points.
+double path_length(const Mesh& mesh, const std::vector<SurfacePoint>& path);
+
+}  // namespace geotri::geodesic

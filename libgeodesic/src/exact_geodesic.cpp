@@ -1,0 +1,651 @@
+#include "window.h"
+
+#include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+
+namespace geotri::geodesic {
+
+using detail::k_infinity;
+using detail::Window;
+using Vec2 = Eigen::Vector2d;
+
+namespace {
+
+// A window that ends within this fraction of an edge's length from a vertex also gives that vertex its distance.
+// The ray to the vertex then misses the window by at most that much, which changes the length only to second
+// order (~1e-18 relative). It closes the gaps that rounding leaves where a ray runs exactly through a vertex.
+constexpr double k_cover = 1e-9;
+// A window is dropped only when a vertex beats it by more than this relative margin, so that ties are kept.
+constexpr double k_margin = 1e-12;
+// Cone angles within this of 2π count as flat: geodesics pass straight through, no pseudo-source is needed, and the
+// rounding gaps left behind are closed by k_cover.
+constexpr double k_flat = 1e-13;
+constexpr double k_two_pi = 6.283185307179586476925286766559;
+// How far a saddle's emission reaches beyond its exact shadow (radians), to cover rounding at the shadow's rims.
+constexpr double k_shadow_slack = 1e-9;
+
+enum class Via : std::uint8_t { none, source, vertex, window };
+
+/// How a vertex got its distance: from a source directly, along an edge from another vertex, or through a window.
+struct Predecessor {
+    Via via = Via::none;
+    int id = -1;
+};
+
+}  // namespace
+
+class ExactGeodesic::Impl {
+public:
+    explicit Impl(const Mesh& mesh);
+
+    void propagate(const std::vector<SurfacePoint>& sources, const PropagationOptions& options);
+    double vertex_distance(int v) const;
+    int num_vertices() const { return mesh_.num_vertices(); }
+    double distance(const SurfacePoint& p) const;
+    std::vector<SurfacePoint> shortest_path(const SurfacePoint& target) const;
+
+    double settled_radius_ = k_infinity;
+    PropagationStats stats_;
+
+private:
+    /// The best known way to reach a point: its distance and what gives it.
+    struct Best {
+        double distance = k_infinity;
+        Via via = Via::none;
+        int id = -1;    // source index, vertex, or window
+        Vec2 position;  // for a window: the point in the window's frame
+    };
+
+    struct StopPoint {
+        SurfacePoint point;
+        double window_estimate = k_infinity;  // best distance through windows, kept up to date as they arrive
+        bool settled = false;
+    };
+
+    void reset();
+    void relax_vertex(int v, double distance, Predecessor predecessor);
+    void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
+    bool dominated(const Window& w) const;
+    void propagate_window(int id);
+    void emit_from_vertex(int v);
+    double incoming_polar_angle(int v) const;
+    void seed_from_point(const SurfacePoint& p, int source_index);
+    bool all_stops_settled(double key);
+    void watch_stop_point(int index);
+
+    Vec2 corner_position(int h, int vertex) const;
+    Vec2 layout(int h, const SurfacePoint& p) const;
+    std::vector<int> faces_around(const SurfacePoint& p) const;
+    bool source_touches_face(int source_index, int f) const;
+    Best best_way_to(const SurfacePoint& p) const;
+    double window_value_at(const Window& w, const Vec2& p) const;
+    SurfacePoint point_on_halfedge(int h, double x) const;
+
+    void push_queue(double key, int item);
+
+    const Mesh& mesh_;
+    std::vector<unsigned char> pseudo_source_;  // vertices that emit windows: saddles, boundary, zero-length edges
+
+    // State of one propagation; reset through the touched lists so that the cost follows the explored region.
+    std::vector<double> distance_;
+    std::vector<Predecessor> predecessor_;
+    std::vector<int> touched_vertices_;
+    std::vector<int> first_window_;  // per halfedge
+    std::vector<int> touched_halfedges_;
+    std::vector<Window> windows_;
+    std::vector<std::pair<double, int>> queue_;  // min-heap; item >= 0 is a window, -1 - v a vertex emission
+    std::vector<SurfacePoint> sources_;
+    std::vector<StopPoint> stops_;
+    std::vector<std::pair<int, int>> watches_;  // (halfedge, stop index), sorted
+    std::vector<unsigned char> watched_;        // per halfedge
+    double max_distance_ = k_infinity;
+};
+
+ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
+    const int nv = mesh.num_vertices();
+    pseudo_source_.assign(nv, 0);
+    for (int v = 0; v < nv; ++v) {
+        bool emits = mesh.is_boundary_vertex(v) || mesh.cone_angle(v) > k_two_pi + k_flat;
+        for (int h : mesh.outgoing_halfedges(v))
+            if (mesh.length(h) == 0.0) emits = true;
+        pseudo_source_[v] = emits;
+    }
+    distance_.assign(nv, k_infinity);
+    predecessor_.assign(nv, Predecessor{});
+    first_window_.assign(mesh.num_halfedges(), -1);
+    watched_.assign(mesh.num_halfedges(), 0);
+}
+
+void ExactGeodesic::Impl::reset() {
+    for (int v : touched_vertices_) {
+        distance_[v] = k_infinity;
+        predecessor_[v] = Predecessor{};
+    }
+    for (int h : touched_halfedges_) first_window_[h] = -1;
+    for (const auto& watch : watches_) watched_[watch.first] = 0;
+    touched_vertices_.clear();
+    touched_halfedges_.clear();
+    windows_.clear();
+    queue_.clear();
+    sources_.clear();
+    stops_.clear();
+    watches_.clear();
+    stats_ = PropagationStats{};
+    settled_radius_ = k_infinity;
+}
+
+void ExactGeodesic::Impl::push_queue(double key, int item) {
+    queue_.emplace_back(key, item);
+    std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
+    ++stats_.queue_pushes;
+    stats_.peak_queue_size = std::max(stats_.peak_queue_size, queue_.size());
+}
+
+void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor predecessor) {
+    if (!(distance < distance_[v])) return;
+    if (distance_[v] == k_infinity) touched_vertices_.push_back(v);
+    distance_[v] = distance;
+    predecessor_[v] = predecessor;
+    if (pseudo_source_[v] && distance <= max_distance_) push_queue(distance, -1 - v);
+}
+
+bool ExactGeodesic::Impl::dominated(const Window& w) const {
+    // |S - x| - |tail - x| never increases as x moves away from the tail, so if the tail's path beats the window
+    // at the far end b1, it beats it everywhere; likewise for the head at b0.
+    const int h = w.halfedge;
+    const double at_far = w.value_at(w.b1);
+    if (distance_[mesh_.tail(h)] + w.b1 < at_far * (1.0 - k_margin)) return true;
+    const double at_near = w.value_at(w.b0);
+    return distance_[mesh_.head(h)] + (mesh_.length(h) - w.b0) < at_near * (1.0 - k_margin);
+}
+
+void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent,
+                                     int origin) {
+    const double length = mesh_.length(h);
+    if (length <= 0.0) return;
+    b0 = std::max(b0, 0.0);
+    b1 = std::min(b1, length);
+    if (!(b0 < b1)) return;
+    Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, first_window_[h]};
+    if (w.lower_bound() > max_distance_) return;
+    if (dominated(w)) {
+        ++stats_.windows_pruned;
+        return;
+    }
+    const int id = static_cast<int>(windows_.size());
+    if (w.next_on_edge < 0) touched_halfedges_.push_back(h);
+    first_window_[h] = id;
+    windows_.push_back(w);
+    ++stats_.windows_created;
+    const double tolerance = k_cover * length;
+    if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
+    if (b1 >= length - tolerance) relax_vertex(mesh_.head(h), w.value_at(length), {Via::window, id});
+    if (watched_[h]) {
+        auto range = std::equal_range(watches_.begin(), watches_.end(), std::make_pair(h, -1),
+                                      [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (auto it = range.first; it != range.second; ++it) {
+            StopPoint& stop = stops_[it->second];
+            stop.window_estimate = std::min(stop.window_estimate, window_value_at(w, layout(h, stop.point)));
+        }
+    }
+    push_queue(w.lower_bound(), id);
+}
+
+void ExactGeodesic::Impl::propagate_window(int id) {
+    const Window w = windows_[id];  // a copy: adding children may reallocate windows_
+    if (dominated(w)) {
+        ++stats_.windows_pruned;
+        return;
+    }
+    ++stats_.windows_propagated;
+    // A source on the edge line sends its rays along the edge: they reach its end vertices (done when the window
+    // was added) but never enter the face.
+    if (!(w.sy < 0.0)) return;
+
+    const int h = w.halfedge;
+    const double length = mesh_.length(h);
+    const Vec2 apex = mesh_.apex(h);
+    const Vec2 source = w.source();
+    const Vec2 head(length, 0.0);
+
+    // The ray from S through the apex crosses the edge at x_apex: rays left of it reach the edge tail→apex, rays
+    // right of it the edge apex→head.
+    const double x_apex = source.x() + (apex.x() - source.x()) * (-source.y()) / (apex.y() - source.y());
+    const double tolerance = k_cover * length;
+    if (x_apex >= w.b0 - tolerance && x_apex <= w.b1 + tolerance)
+        relax_vertex(mesh_.tail(Mesh::prev(h)), w.sigma + (apex - source).norm(), {Via::window, id});
+
+    if (w.b0 < x_apex) {  // child on the edge tail→apex, seen from the neighbour across it
+        const int child = mesh_.twin(Mesh::prev(h));
+        const double apex_norm = apex.norm();
+        if (child >= 0 && apex_norm > 0.0) {
+            const Vec2 e = apex / apex_norm;
+            const double hi = std::min(w.b1, x_apex);
+            double u0 = w.b0 == 0.0 ? 0.0 : detail::line_crossing(source, Vec2(w.b0, 0.0), Vec2::Zero(), e);
+            double u1 = hi == x_apex ? apex_norm : detail::line_crossing(source, Vec2(hi, 0.0), Vec2::Zero(), e);
+            if (!std::isfinite(u0)) u0 = 0.0;
+            if (!std::isfinite(u1)) u1 = apex_norm;
+            const double scale = mesh_.length(child) / apex_norm;
+            add_window(child, u0 * scale, u1 * scale, detail::to_frame(source, Vec2::Zero(), e), w.sigma, id,
+                       w.origin);
+        }
+    }
+    if (x_apex < w.b1) {  // child on the edge apex→head
+        const int child = mesh_.twin(Mesh::next(h));
+        const Vec2 along = head - apex;
+        const double along_norm = along.norm();
+        if (child >= 0 && along_norm > 0.0) {
+            const Vec2 e = along / along_norm;
+            const double lo = std::max(w.b0, x_apex);
+            double v0 = lo == x_apex ? 0.0 : detail::line_crossing(source, Vec2(lo, 0.0), apex, e);
+            double v1 = w.b1 == length ? along_norm : detail::line_crossing(source, Vec2(w.b1, 0.0), apex, e);
+            if (!std::isfinite(v0)) v0 = 0.0;
+            if (!std::isfinite(v1)) v1 = along_norm;
+            const double scale = mesh_.length(child) / along_norm;
+            add_window(child, v0 * scale, v1 * scale, detail::to_frame(source, apex, e), w.sigma, id, w.origin);
+        }
+    }
+}
+
+double ExactGeodesic::Impl::incoming_polar_angle(int v) const {
+    constexpr double unknown = std::numeric_limits<double>::quiet_NaN();
+    if (!mesh_.is_manifold_vertex(v) || mesh_.is_boundary_vertex(v)) return unknown;
+    const Predecessor predecessor = predecessor_[v];
+    if (predecessor.via == Via::vertex) {
+        const int h = mesh_.find_halfedge(v, predecessor.id);
+        return h >= 0 ? mesh_.polar_angle(h) : unknown;
+    }
+    if (predecessor.via != Via::window) return unknown;
+    // The direction from v back towards the window's pseudo-source, in v's polar angles. The frame of the window's
+    // halfedge keeps orientation, so counter-clockwise there is counter-clockwise on the surface.
+    const Window& w = windows_[predecessor.id];
+    const int h = w.halfedge;
+    const Vec2 source = w.source();
+    auto angle_from = [](const Vec2& from, const Vec2& to) {
+        return std::atan2(detail::cross(from, to), from.dot(to));
+    };
+    double angle;
+    if (v == mesh_.tail(h)) {  // clockwise from the direction of h
+        angle = mesh_.polar_angle(h) - std::clamp(-angle_from(Vec2(1.0, 0.0), source), 0.0, M_PI);
+    } else if (v == mesh_.head(h)) {  // counter-clockwise beyond the direction head -> tail
+        const int n = Mesh::next(h);
+        angle = mesh_.polar_angle(n) + mesh_.corner_angle(n) +
+                std::clamp(angle_from(Vec2(-1.0, 0.0), source - Vec2(mesh_.length(h), 0.0)), 0.0, M_PI);
+    } else {  // v is the apex: inside its corner, counter-clockwise from the direction apex -> tail
+        const int p = Mesh::prev(h);
+        const Vec2 apex = mesh_.apex(h);
+        angle = mesh_.polar_angle(p) + std::clamp(angle_from(-apex, source - apex), 0.0, mesh_.corner_angle(p));
+    }
+    const double cone = mesh_.cone_angle(v);
+    angle = std::fmod(angle, cone);
+    return angle < 0.0 ? angle + cone : angle;
+}
+
+void ExactGeodesic::Impl::emit_from_vertex(int v) {
+    ++stats_.vertex_emissions;
+    const double d = distance_[v];
+    // A geodesic through v leaves it at least π away from where it came in, on both sides (MMP): emit only into
+    // that shadow, widened by k_shadow_slack to cover rounding at its rims. Sources and boundary vertices emit all
+    // around.
+    const double incoming = incoming_polar_angle(v);
+    const double cone = mesh_.cone_angle(v);
+    const bool everywhere = std::isnan(incoming);
+    const double shadow_start = incoming + M_PI - k_shadow_slack;
+    const double shadow_length = cone - 2.0 * M_PI + 2.0 * k_shadow_slack;
+    if (!everywhere && shadow_length <= 0.0) return;
+
+    for (int h : mesh_.outgoing_halfedges(v)) {
+        relax_vertex(mesh_.head(h), d + mesh_.length(h), {Via::vertex, v});
+        relax_vertex(mesh_.tail(Mesh::prev(h)), d + mesh_.length(Mesh::prev(h)), {Via::vertex, v});
+        const int opposite = Mesh::next(h);
+        const int beyond = mesh_.twin(opposite);
+        if (beyond < 0) continue;
+        const double corner = mesh_.corner_angle(h);
+        double a0 = 0.0, a1 = corner;  // the part of the corner to emit into, counter-clockwise from h
+        if (!everywhere) {
+            // Intersect [polar(h), polar(h) + corner] with the shadow, which may wrap around the cone angle.
+            double start = std::fmod(shadow_start - mesh_.polar_angle(h), cone);
+            if (start < 0.0) start += cone;
+            if (start > corner && start + shadow_length < cone) continue;
+            if (start <= corner) {
+                a0 = start;
+                a1 = std::min(corner, start + shadow_length);
+            } else {
+                a0 = 0.0;
+                a1 = std::min(corner, start + shadow_length - cone);
+            }
+            if (start <= corner && start + shadow_length > cone) a0 = 0.0;  // the shadow also wraps into it
+            if (!(a0 < a1)) continue;
+        }
+        // The opposite edge's frame: tail(opposite) = head(h) at the origin, v at its apex. Angles turn from the
+        // direction v -> origin towards v -> (L, 0).
+        const double length = mesh_.length(opposite);
+        const Vec2 apex = mesh_.apex(opposite);
+        auto hit = [&](double angle) {
+            const Vec2 toward = -apex;
+            const double c = std::cos(angle), s = std::sin(angle);
+            const Vec2 direction(c * toward.x() - s * toward.y(), s * toward.x() + c * toward.y());
+            const double x = apex.x() + direction.x() * (-apex.y()) / direction.y();
+            return std::isfinite(x) && direction.y() < 0.0 ? std::clamp(x, 0.0, length) : length;
+        };
+        const double x0 = a0 == 0.0 ? 0.0 : hit(a0);
+        const double x1 = a1 == corner ? length : hit(a1);
+        const Vec2 source(length - apex.x(), -apex.y());
+        const double scale = mesh_.length(beyond) / length;
+        add_window(beyond, (length - x1) * scale, (length - x0) * scale, source, d, -1, v);
+    }
+}
+
+void ExactGeodesic::Impl::seed_from_point(const SurfacePoint& p, int source_index) {
+    const Eigen::Vector3d position = mesh_.point(p);
+    for (int f : faces_around(p)) {
+        for (int i = 0; i < 3; ++i) {
+            const int h = 3 * f + i;
+            relax_vertex(mesh_.tail(h), (mesh_.position(mesh_.tail(h)) - position).norm(),
+                         {Via::source, source_index});
+            const int beyond = mesh_.twin(h);
+            if (beyond < 0) continue;
+            const bool own_edge = p.kind == PointKind::edge &&
+                                  ((mesh_.tail(h) == p.edge_v0 && mesh_.head(h) == p.edge_v1) ||
+                                   (mesh_.tail(h) == p.edge_v1 && mesh_.head(h) == p.edge_v0));
+            if (own_edge) continue;
+            const Vec2 s = layout(h, p);
+            add_window(beyond, 0.0, mesh_.length(beyond), Vec2(mesh_.length(h) - s.x(), -s.y()), 0.0, -1,
+                       -1 - source_index);
+        }
+    }
+}
+
+Vec2 ExactGeodesic::Impl::corner_position(int h, int vertex) const {
+    if (vertex == mesh_.tail(h)) return Vec2::Zero();
+    if (vertex == mesh_.head(h)) return Vec2(mesh_.length(h), 0.0);
+    return mesh_.apex(h);
+}
+
+Vec2 ExactGeodesic::Impl::layout(int h, const SurfacePoint& p) const {
+    switch (p.kind) {
+        case PointKind::vertex: return corner_position(h, p.vertex);
+        case PointKind::edge: return (1.0 - p.t) * corner_position(h, p.edge_v0) + p.t * corner_position(h, p.edge_v1);
+        case PointKind::face: {
+            const int i = h % 3;
+            return p.bary[(i + 1) % 3] * Vec2(mesh_.length(h), 0.0) + p.bary[(i + 2) % 3] * mesh_.apex(h);
+        }
+    }
+    return Vec2::Zero();
+}
+
+std::vector<int> ExactGeodesic::Impl::faces_around(const SurfacePoint& p) const {
+    std::vector<int> faces;
+    switch (p.kind) {
+        case PointKind::vertex:
+            for (int h : mesh_.outgoing_halfedges(p.vertex)) faces.push_back(Mesh::face_of(h));
+            break;
+        case PointKind::edge:
+            for (int h : {mesh_.find_halfedge(p.edge_v0, p.edge_v1), mesh_.find_halfedge(p.edge_v1, p.edge_v0)})
+                if (h >= 0) faces.push_back(Mesh::face_of(h));
+            break;
+        case PointKind::face: faces.push_back(p.face); break;
+    }
+    return faces;
+}
+
+bool ExactGeodesic::Impl::source_touches_face(int source_index, int f) const {
+    const SurfacePoint& s = sources_[source_index];
+    const auto& t = mesh_.triangle(f);
+    auto in_face = [&](int v) { return v == t[0] || v == t[1] || v == t[2]; };
+    switch (s.kind) {
+        case PointKind::vertex: return in_face(s.vertex);
+        case PointKind::edge: return in_face(s.edge_v0) && in_face(s.edge_v1);
+        case PointKind::face: return s.face == f;
+    }
+    return false;
+}
+
+double ExactGeodesic::Impl::window_value_at(const Window& w, const Vec2& p) const {
+    const double x = w.crossing_of(p);
+    const double tolerance = k_cover * mesh_.length(w.halfedge);
+    if (!(x >= w.b0 - tolerance && x <= w.b1 + tolerance)) return k_infinity;
+    return w.distance_to(p);
+}
+
+ExactGeodesic::Impl::Best ExactGeodesic::Impl::best_way_to(const SurfacePoint& p) const {
+    Best best;
+    if (p.kind == PointKind::vertex) {
+        best.distance = distance_[p.vertex];
+        best.via = Via::vertex;
+        best.id = p.vertex;
+        return best;
+    }
+    const Eigen::Vector3d position = mesh_.point(p);
+    for (int f : faces_around(p)) {
+        for (int i = 0; i < 3; ++i) {
+            const int h = 3 * f + i;
+            const int v = mesh_.tail(h);
+            const double through_vertex = distance_[v] + (mesh_.position(v) - position).norm();
+            if (through_vertex < best.distance) best = Best{through_vertex, Via::vertex, v, Vec2::Zero()};
+            const Vec2 q = layout(h, p);
+            for (int id = first_window_[h]; id >= 0; id = windows_[id].next_on_edge) {
+                const double d = window_value_at(windows_[id], q);
+                if (d < best.distance) best = Best{d, Via::window, id, q};
+            }
+        }
+        for (int s = 0; s < static_cast<int>(sources_.size()); ++s) {
+            if (!source_touches_face(s, f)) continue;
+            const double d = (mesh_.point(sources_[s]) - position).norm();
+            if (d < best.distance) best = Best{d, Via::source, s, Vec2::Zero()};
+        }
+    }
+    return best;
+}
+
+void ExactGeodesic::Impl::watch_stop_point(int index) {
+    const SurfacePoint& p = stops_[index].point;
+    if (p.kind == PointKind::vertex) return;  // its distance is always current
+    for (int f : faces_around(p))
+        for (int i = 0; i < 3; ++i) {
+            watches_.emplace_back(3 * f + i, index);
+            watched_[3 * f + i] = 1;
+        }
+}
+
+bool ExactGeodesic::Impl::all_stops_settled(double key) {
+    // Every pending window gives at least `key`, so a stop point whose best distance is within it is final.
+    bool all = true;
+    for (StopPoint& stop : stops_) {
+        if (stop.settled) continue;
+        double estimate;
+        if (stop.point.kind == PointKind::vertex) {
+            estimate = distance_[stop.point.vertex];
+        } else {
+            estimate = stop.window_estimate;
+            const Eigen::Vector3d position = mesh_.point(stop.point);
+            for (int f : faces_around(stop.point)) {
+                for (int v : mesh_.triangle(f))
+                    estimate = std::min(estimate, distance_[v] + (mesh_.position(v) - position).norm());
+                for (int s = 0; s < static_cast<int>(sources_.size()); ++s)
+                    if (source_touches_face(s, f))
+                        estimate = std::min(estimate, (mesh_.point(sources_[s]) - position).norm());
+            }
+        }
+        stop.settled = estimate <= key;
+        all = all && stop.settled;
+    }
+    return all;
+}
+
+void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, const PropagationOptions& options) {
+    if (sources.empty()) throw InvalidInput("propagation needs at least one source");
+    if (!(options.max_distance >= 0.0)) throw InvalidInput("max_distance must be non-negative");
+    std::vector<SurfacePoint> canonical_sources;
+    for (const SurfacePoint& s : sources) canonical_sources.push_back(mesh_.canonical(s));
+    std::vector<SurfacePoint> stop_points;
+    for (const SurfacePoint& s : options.stop_points) stop_points.push_back(mesh_.canonical(s));
+
+    reset();
+    sources_ = std::move(canonical_sources);
+    max_distance_ = options.max_distance;
+    for (const SurfacePoint& p : stop_points) stops_.push_back(StopPoint{p});
+    for (int i = 0; i < static_cast<int>(stops_.size()); ++i) watch_stop_point(i);
+    std::sort(watches_.begin(), watches_.end());
+
+    for (int k = 0; k < static_cast<int>(sources_.size()); ++k) {
+        const SurfacePoint& s = sources_[k];
+        if (s.kind == PointKind::vertex) {
+            relax_vertex(s.vertex, 0.0, {Via::source, k});
+            if (!pseudo_source_[s.vertex]) push_queue(0.0, -1 - s.vertex);
+        } else {
+            seed_from_point(s, k);
+        }
+    }
+
+    std::vector<unsigned char> emitted_at_zero;  // a vertex source may be queued twice at distance 0
+    while (!queue_.empty()) {
+        std::pop_heap(queue_.begin(), queue_.end(), std::greater<>());
+        const auto [key, item] = queue_.back();
+        queue_.pop_back();
+        ++stats_.queue_pops;
+        if (key > max_distance_) {
+            stats_.stopped_early = true;
+            break;
+        }
+        if (!stops_.empty() && all_stops_settled(key)) {
+            stats_.stopped_early = true;
+            settled_radius_ = key;
+            break;
+        }
+        if (item >= 0) {
+            propagate_window(item);
+        } else {
+            const int v = -1 - item;
+            if (key != distance_[v]) continue;  // superseded by a shorter distance
+            if (key == 0.0) {
+                if (emitted_at_zero.empty()) emitted_at_zero.assign(mesh_.num_vertices(), 0);
+                if (emitted_at_zero[v]) continue;
+                emitted_at_zero[v] = 1;
+            }
+            emit_from_vertex(v);
+        }
+    }
+    if (!stats_.stopped_early && !stops_.empty()) all_stops_settled(k_infinity);
+    if (std::isfinite(max_distance_)) settled_radius_ = std::min(settled_radius_, max_distance_);
+    stats_.window_bytes = windows_.capacity() * sizeof(Window);
+}
+
+double ExactGeodesic::Impl::vertex_distance(int v) const {
+    const double d = distance_[v];
+    return d <= settled_radius_ ? d : k_infinity;
+}
+
+double ExactGeodesic::Impl::distance(const SurfacePoint& p) const {
+    const double d = best_way_to(mesh_.canonical(p)).distance;
+    return d <= settled_radius_ ? d : k_infinity;
+}
+
+SurfacePoint ExactGeodesic::Impl::point_on_halfedge(int h, double x) const {
+    const double length = mesh_.length(h);
+    if (x <= 0.0) return SurfacePoint::at_vertex(mesh_.tail(h));
+    if (x >= length) return SurfacePoint::at_vertex(mesh_.head(h));
+    return SurfacePoint::on_edge(mesh_.tail(h), mesh_.head(h), x / length);
+}
+
+std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint& raw_target) const {
+    const SurfacePoint target = mesh_.canonical(raw_target);
+    const Best best = best_way_to(target);
+    if (!(best.distance <= settled_radius_)) return {};
+
+    std::vector<SurfacePoint> path{target};
+    auto append = [&](const SurfacePoint& p) {
+        if (path.back() != p) path.push_back(p);
+    };
+
+    // Walk back from the target: through windows (straight across the faces they crossed) and vertices (to
+    // whatever gave them their distance), until a source is reached.
+    Via via = best.via;
+    int id = best.id;
+    Vec2 position = best.position;
+    const std::size_t step_limit = 4 * (windows_.size() + touched_vertices_.size()) + 16;
+    for (std::size_t step = 0; step < step_limit; ++step) {
+        if (via == Via::source) {
+            append(sources_[id]);
+            std::reverse(path.begin(), path.end());
+            return path;
+        }
+        if (via == Via::vertex) {
+            append(SurfacePoint::at_vertex(id));
+            const Predecessor predecessor = predecessor_[id];
+            if (predecessor.via == Via::window) {
+                const int h = windows_[predecessor.id].halfedge;
+                position = corner_position(h, id);
+            }
+            via = predecessor.via;
+            id = predecessor.id;
+            if (via == Via::none) break;
+            continue;
+        }
+        // via == Via::window: `position` is in the frame of the window's halfedge, on the face side.
+        const Window& w = windows_[id];
+        const int h = w.halfedge;
+        const double x = std::clamp(w.crossing_of(position), w.b0, w.b1);
+        append(point_on_halfedge(h, x));
+        if (w.parent < 0) {
+            via = w.origin >= 0 ? Via::vertex : Via::source;
+            id = w.origin >= 0 ? w.origin : -1 - w.origin;
+            continue;
+        }
+        // Carry the crossing into the parent's frame: h is the twin of one of the other edges of its face.
+        const Window& parent = windows_[w.parent];
+        const int hp = parent.halfedge;
+        const double fraction = x / mesh_.length(h);
+        const Vec2 apex = mesh_.apex(hp);
+        if (mesh_.twin(h) == Mesh::prev(hp)) {
+            position = fraction * apex;
+        } else {
+            position = apex + fraction * (Vec2(mesh_.length(hp), 0.0) - apex);
+        }
+        id = w.parent;
+    }
+    throw NumericalError("shortest path could not be traced back to a source");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+
+ExactGeodesic::ExactGeodesic(const Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
+ExactGeodesic::~ExactGeodesic() = default;
+ExactGeodesic::ExactGeodesic(ExactGeodesic&&) noexcept = default;
+ExactGeodesic& ExactGeodesic::operator=(ExactGeodesic&&) noexcept = default;
+
+void ExactGeodesic::propagate(const std::vector<SurfacePoint>& sources, const PropagationOptions& options) {
+    impl_->propagate(sources, options);
+}
+
+double ExactGeodesic::distance(int vertex) const { return impl_->vertex_distance(vertex); }
+
+double ExactGeodesic::distance(const SurfacePoint& point) const { return impl_->distance(point); }
+
+std::vector<double> ExactGeodesic::vertex_distances() const {
+    std::vector<double> result(impl_->num_vertices());
+    for (int v = 0; v < static_cast<int>(result.size()); ++v) result[v] = impl_->vertex_distance(v);
+    return result;
+}
+
+std::vector<SurfacePoint> ExactGeodesic::shortest_path(const SurfacePoint& target) const {
+    return impl_->shortest_path(target);
+}
+
+double ExactGeodesic::settled_radius() const { return impl_->settled_radius_; }
+
+const PropagationStats& ExactGeodesic::stats() const { return impl_->stats_; }
+
+double path_length(const Mesh& mesh, const std::vector<SurfacePoint>& path) {
+    double length = 0.0;
+    for (std::size_t i = 1; i < path.size(); ++i) length += (mesh.point(path[i]) - mesh.point(path[i - 1])).norm();
+    return length;
+}
+
+}  // namespace geotri::geodesic

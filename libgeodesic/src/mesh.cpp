@@ -1,0 +1,230 @@
+#include <geodesic/errors.h>
+#include <geodesic/mesh.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <string>
+
+namespace geotri::geodesic {
+
+namespace {
+
+std::string edge_name(int a, int b) { return "(" + std::to_string(a) + "," + std::to_string(b) + ")"; }
+
+// Angle between u and v, robust for needles and zero-area faces (atan2 instead of acos).
+double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
+}  // namespace
+
+Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3>> triangles)
+    : positions_(std::move(positions)), triangles_(std::move(triangles)) {
+    const int nv = num_vertices();
+    const int nf = num_faces();
+    for (int v = 0; v < nv; ++v) {
+        if (!positions_[v].allFinite())
+            throw InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate");
+    }
+    for (int f = 0; f < nf; ++f) {
+        const auto& t = triangles_[f];
+        for (int i = 0; i < 3; ++i) {
+            if (t[i] < 0 || t[i] >= nv)
+                throw InvalidInput("face " + std::to_string(f) + " refers to vertex " + std::to_string(t[i]) +
+                                   ", out of range [0, " + std::to_string(nv) + ")");
+        }
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+            throw InvalidInput("face " + std::to_string(f) + " repeats a vertex");
+    }
+
+    // Twins: sort the halfedges by their undirected edge, then pair them up.
+    const int nh = 3 * nf;
+    std::vector<std::uint64_t> key(nh);
+    for (int h = 0; h < nh; ++h) {
+        auto a = static_cast<std::uint64_t>(tail(h));
+        auto b = static_cast<std::uint64_t>(head(h));
+        key[h] = a < b ? (a << 32 | b) : (b << 32 | a);
+    }
+    std::vector<int> order(nh);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int x, int y) { return key[x] < key[y] || (key[x] == key[y] && x < y); });
+    twin_.assign(nh, -1);
+    for (int i = 0; i < nh;) {
+        int j = i + 1;
+        while (j < nh && key[order[j]] == key[order[i]]) ++j;
+        const int h = order[i];
+        if (j - i > 2)
+            throw TopologyError("edge " + edge_name(tail(h), head(h)) + " is shared by " + std::to_string(j - i) +
+                                " faces (non-manifold)");
+        if (j - i == 2) {
+            const int g = order[i + 1];
+            if (tail(h) == tail(g))
+                throw TopologyError("faces " + std::to_string(face_of(h)) + " and " + std::to_string(face_of(g)) +
+                                    " are inconsistently oriented at edge " + edge_name(tail(h), head(h)));
+            twin_[h] = g;
+            twin_[g] = h;
+        } else {
+            ++num_boundary_halfedges_;
+        }
+        i = j;
+    }
+
+    // Outgoing halfedges per vertex (CSR), and one representative that starts the fan on a boundary.
+    outgoing_offset_.assign(nv + 1, 0);
+    for (int h = 0; h < nh; ++h) ++outgoing_offset_[tail(h) + 1];
+    for (int v = 0; v < nv; ++v) outgoing_offset_[v + 1] += outgoing_offset_[v];
+    outgoing_list_.resize(nh);
+    {
+        std::vector<int> fill(outgoing_offset_.begin(), outgoing_offset_.end() - 1);
+        for (int h = 0; h < nh; ++h) outgoing_list_[fill[tail(h)]++] = h;
+    }
+    outgoing_.assign(nv, -1);
+    boundary_vertex_.assign(nv, 0);
+    for (int h = 0; h < nh; ++h) {
+        const int v = tail(h);
+        if (twin_[h] < 0) {
+            outgoing_[v] = h;
+            boundary_vertex_[v] = 1;
+            boundary_vertex_[head(h)] = 1;
+        } else if (outgoing_[v] < 0) {
+            outgoing_[v] = h;
+        }
+    }
+
+    length_.resize(nh);
+    corner_angle_.resize(nh);
+    apex_.resize(nh);
+    cone_angle_.assign(nv, 0.0);
+    for (int h = 0; h < nh; ++h) {
+        const Eigen::Vector3d& p = positions_[tail(h)];
+        const Eigen::Vector3d along = positions_[head(h)] - p;
+        const Eigen::Vector3d back = positions_[tail(prev(h))] - p;
+        length_[h] = along.norm();
+        corner_angle_[h] = angle_between(along, back);
+        // Straight from the 3D vectors rather than the law of cosines, which loses the height of needles.
+        const double l = length_[h];
+        apex_[h] = l > 0.0 ? Eigen::Vector2d(back.dot(along) / l, along.cross(back).norm() / l)
+                           : Eigen::Vector2d(0.0, back.norm());
+        cone_angle_[tail(h)] += corner_angle_[h];
+    }
+
+    // Polar angles: walk each vertex's fan counter-clockwise (h -> twin(prev(h))) from its first halfedge.
+    polar_angle_.assign(nh, std::numeric_limits<double>::quiet_NaN());
+    manifold_vertex_.assign(nv, 0);
+    for (int v = 0; v < nv; ++v) {
+        const int first = outgoing_[v];
+        if (first < 0) continue;
+        int count = 0;
+        double angle = 0.0;
+        for (int h = first; h >= 0;) {
+            polar_angle_[h] = angle;
+            angle += corner_angle_[h];
+            ++count;
+            h = twin_[prev(h)];
+            if (h == first) break;
+        }
+        if (count == outgoing_offset_[v + 1] - outgoing_offset_[v]) {
+            manifold_vertex_[v] = 1;
+        } else {
+            for (int h : outgoing_halfedges(v)) polar_angle_[h] = std::numeric_limits<double>::quiet_NaN();
+        }
+    }
+}
+
+int Mesh::find_halfedge(int from, int to) const {
+    if (from < 0 || from >= num_vertices()) return -1;
+    for (int h : outgoing_halfedges(from))
+        if (head(h) == to) return h;
+    return -1;
+}
+
+double Mesh::face_area(int f) const {
+    const auto& t = triangles_[f];
+    return 0.5 * (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]).norm();
+}
+
+double Mesh::total_area() const {
+    double sum = 0.0;
+    for (int f = 0; f < num_faces(); ++f) sum += face_area(f);
+    return sum;
+}
+
+Eigen::Vector3d Mesh::point(const SurfacePoint& p) const {
+    switch (p.kind) {
+        case PointKind::vertex:
+            if (p.vertex < 0 || p.vertex >= num_vertices())
+                throw InvalidInput("vertex " + std::to_string(p.vertex) + " is out of range");
+            return positions_[p.vertex];
+        case PointKind::edge:
+            if (p.edge_v0 < 0 || p.edge_v0 >= num_vertices() || p.edge_v1 < 0 || p.edge_v1 >= num_vertices())
+                throw InvalidInput("edge " + edge_name(p.edge_v0, p.edge_v1) + " is out of range");
+            return (1.0 - p.t) * positions_[p.edge_v0] + p.t * positions_[p.edge_v1];
+        case PointKind::face: {
+            if (p.face < 0 || p.face >= num_faces())
+                throw InvalidInput("face " + std::to_string(p.face) + " is out of range");
+            const auto& t = triangles_[p.face];
+            return p.bary[0] * positions_[t[0]] + p.bary[1] * positions_[t[1]] + p.bary[2] * positions_[t[2]];
+        }
+    }
+    throw InvalidInput("unknown surface point kind");
+}
+
+SurfacePoint Mesh::canonical(const SurfacePoint& p) const {
+    switch (p.kind) {
+        case PointKind::vertex:
+            if (p.vertex < 0 || p.vertex >= num_vertices())
+                throw InvalidInput("vertex " + std::to_string(p.vertex) + " is out of range [0, " +
+                                   std::to_string(num_vertices()) + ")");
+            return p;
+        case PointKind::edge: {
+            if (find_halfedge(p.edge_v0, p.edge_v1) < 0 && find_halfedge(p.edge_v1, p.edge_v0) < 0)
+                throw InvalidInput("there is no edge " + edge_name(p.edge_v0, p.edge_v1));
+            if (!std::isfinite(p.t) || p.t < 0.0 || p.t > 1.0)
+                throw InvalidInput("edge parameter " + std::to_string(p.t) + " is outside [0, 1]");
+            if (p.t == 0.0) return SurfacePoint::at_vertex(p.edge_v0);
+            if (p.t == 1.0) return SurfacePoint::at_vertex(p.edge_v1);
+            return p;
+        }
+        case PointKind::face: {
+            if (p.face < 0 || p.face >= num_faces())
+                throw InvalidInput("face " + std::to_string(p.face) + " is out of range [0, " +
+                                   std::to_string(num_faces()) + ")");
+            std::array<double, 3> b = p.bary;
+            double sum = 0.0;
+            for (double& x : b) {
+                if (!std::isfinite(x) || x < -1e-9)
+                    throw InvalidInput("barycentric coordinate " + std::to_string(x) + " is not in [0, 1]");
+                x = std::max(x, 0.0);
+                sum += x;
+            }
+            if (!(sum > 0.0)) throw InvalidInput("barycentric coordinates sum to zero");
+            if (std::abs(sum - 1.0) > 1e-9)
+                throw InvalidInput("barycentric coordinates sum to " + std::to_string(sum) + ", not 1");
+            if (sum != 1.0)
+                for (double& x : b) x /= sum;
+            const auto& t = triangles_[p.face];
+            int zeros = (b[0] == 0.0) + (b[1] == 0.0) + (b[2] == 0.0);
+            if (zeros == 2) {
+                for (int i = 0; i < 3; ++i)
+                    if (b[i] != 0.0) return SurfacePoint::at_vertex(t[i]);
+            }
+            if (zeros == 1) {
+                for (int i = 0; i < 3; ++i) {
+                    if (b[i] == 0.0) {
+                        const int a = (i + 1) % 3, c = (i + 2) % 3;
+                        return SurfacePoint::on_edge(t[a], t[c], b[c] / (b[a] + b[c]));
+                    }
+                }
+            }
+            return SurfacePoint::in_face(p.face, b);
+        }
+    }
+    throw InvalidInput("unknown surface point kind");
+}
+
+}  // namespace geotri::geodesic
