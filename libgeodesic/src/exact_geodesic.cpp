@@ -29,8 +29,18 @@ constexpr double k_flat = 1e-13;
 constexpr double k_two_pi = 6.283185307179586476925286766559;
 // How far a saddle's emission reaches beyond its exact shadow (radians), to cover rounding at the shadow's rims.
 constexpr double k_shadow_slack = 1e-9;
+// A path's edge crossing this close to a vertex (relative to the mesh size) is reported as that vertex.
+constexpr double k_vertex_snap = 1e-12;
 
 enum class Via : std::uint8_t { none, source, vertex, window };
+
+constexpr unsigned char k_pending = 0;
+constexpr unsigned char k_propagated = 1;
+constexpr unsigned char k_merged = 2;
+// Windows of the same ray family (same pseudo-source, unfolded to the same place up to this relative rounding) that
+// touch on an edge are propagated as one.
+constexpr double k_same_source = 1e-13;
+constexpr int k_merge_lookahead = 8;
 
 /// How a vertex got its distance: from a source directly, along an edge from another vertex, or through a window.
 struct Predecessor {
@@ -71,8 +81,10 @@ private:
     void reset();
     void relax_vertex(int v, double distance, Predecessor predecessor);
     void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
-    bool dominated(const Window& w) const;
+    bool trim_by_end_vertices(Window& w) const;
     void propagate_window(int id);
+    int merge_with_siblings(int id);
+    int piece_covering(int id, double x) const;
     void emit_from_vertex(int v);
     double incoming_polar_angle(int v) const;
     void seed_from_point(const SurfacePoint& p, int source_index);
@@ -99,6 +111,9 @@ private:
     std::vector<int> first_window_;  // per halfedge
     std::vector<int> touched_halfedges_;
     std::vector<Window> windows_;
+    std::vector<unsigned char> window_state_;  // per window: pending, propagated or merged into another
+    std::vector<int> merged_pieces_;           // for merged windows: a count, then the ids of the pieces
+    std::vector<int> merge_scratch_;
     std::vector<std::pair<double, int>> queue_;  // min-heap; item >= 0 is a window, -1 - v a vertex emission
     std::vector<SurfacePoint> sources_;
     std::vector<StopPoint> stops_;
@@ -132,6 +147,8 @@ void ExactGeodesic::Impl::reset() {
     touched_vertices_.clear();
     touched_halfedges_.clear();
     windows_.clear();
+    window_state_.clear();
+    merged_pieces_.clear();
     queue_.clear();
     sources_.clear();
     stops_.clear();
@@ -155,14 +172,44 @@ void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor prede
     if (pseudo_source_[v] && distance <= max_distance_) push_queue(distance, -1 - v);
 }
 
-bool ExactGeodesic::Impl::dominated(const Window& w) const {
-    // |S - x| - |tail - x| never increases as x moves away from the tail, so if the tail's path beats the window
-    // at the far end b1, it beats it everywhere; likewise for the head at b0.
+namespace {
+
+// Where, on an edge whose end vertex sits at the origin with distance d, the path through that vertex stops beating
+// the window by `slack`: the x >= 0 with sigma + |S - x| = d + slack + x. Only called when such an x exists in the
+// window; NaN if rounding says otherwise.
+double vertex_takeover(double sx, double sy, double sigma, double d, double slack) {
+    const double k = d + slack - sigma;
+    const double denominator = 2.0 * (sx + k);
+    const double x = (sx * sx + sy * sy - k * k) / denominator;
+    return denominator > 0.0 && k + x >= 0.0 ? x : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w) const {
+    // |S - x| - |tail - x| never increases as x moves away from the tail, so the part where the tail's path beats
+    // the window is an interval that starts at the tail; likewise for the head. Such a part cannot be on any
+    // shortest path (the vertex's path is shorter, or, for a convex vertex, shorter still around it), so it goes.
     const int h = w.halfedge;
-    const double at_far = w.value_at(w.b1);
-    if (distance_[mesh_.tail(h)] + w.b1 < at_far * (1.0 - k_margin)) return true;
-    const double at_near = w.value_at(w.b0);
-    return distance_[mesh_.head(h)] + (mesh_.length(h) - w.b0) < at_near * (1.0 - k_margin);
+    const double length = mesh_.length(h);
+    const double slack = k_margin * (w.sigma + w.source().norm() + length);
+    const double d_tail = distance_[mesh_.tail(h)];
+    if (d_tail < k_infinity) {
+        if (w.value_at(w.b1) > d_tail + w.b1 + slack) return false;
+        if (w.value_at(w.b0) > d_tail + w.b0 + slack) {
+            const double x = vertex_takeover(w.sx, w.sy, w.sigma, d_tail, slack);
+            if (x > w.b0 && x < w.b1) w.b0 = x;
+        }
+    }
+    const double d_head = distance_[mesh_.head(h)];
+    if (d_head < k_infinity) {
+        if (w.value_at(w.b0) > d_head + (length - w.b0) + slack) return false;
+        if (w.value_at(w.b1) > d_head + (length - w.b1) + slack) {
+            const double y = vertex_takeover(length - w.sx, w.sy, w.sigma, d_head, slack);
+            if (length - y > w.b0 && length - y < w.b1) w.b1 = length - y;
+        }
+    }
+    return w.b0 < w.b1;
 }
 
 void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent,
@@ -174,7 +221,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     if (!(b0 < b1)) return;
     Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, first_window_[h]};
     if (w.lower_bound() > max_distance_) return;
-    if (dominated(w)) {
+    if (!trim_by_end_vertices(w)) {
         ++stats_.windows_pruned;
         return;
     }
@@ -182,6 +229,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     if (w.next_on_edge < 0) touched_halfedges_.push_back(h);
     first_window_[h] = id;
     windows_.push_back(w);
+    window_state_.push_back(k_pending);
     ++stats_.windows_created;
     const double tolerance = k_cover * length;
     if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
@@ -197,16 +245,79 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     push_queue(w.lower_bound(), id);
 }
 
-void ExactGeodesic::Impl::propagate_window(int id) {
-    const Window w = windows_[id];  // a copy: adding children may reallocate windows_
-    if (dominated(w)) {
+int ExactGeodesic::Impl::merge_with_siblings(int id) {
+    // The same ray family reaches an edge in fragments, one per path of faces. Merging the pending fragments
+    // before crossing the face keeps the window count near one per family and edge.
+    const Window w = windows_[id];
+    const double length = mesh_.length(w.halfedge);
+    const double source_tolerance = k_same_source * (length + w.source().norm() + w.sigma);
+    const double gap_tolerance = k_cover * length;
+    double b0 = w.b0, b1 = w.b1;
+    std::vector<int>& pieces = merge_scratch_;
+    pieces.assign(1, id);
+    // Fragments of one family arrive close together in time, so they sit near the front of the edge's list;
+    // a bounded look keeps the cost constant on edges that many families cross.
+    int looked = 0;
+    for (int s = first_window_[w.halfedge]; s >= 0 && looked < k_merge_lookahead; s = windows_[s].next_on_edge) {
+        ++looked;
+        if (window_state_[s] != k_pending || s == id) continue;
+        const Window& other = windows_[s];
+        if (other.origin != w.origin || std::abs(other.sigma - w.sigma) > source_tolerance ||
+            (other.source() - w.source()).norm() > source_tolerance)
+            continue;
+        if (other.b0 > b1 + gap_tolerance || other.b1 < b0 - gap_tolerance) continue;
+        window_state_[s] = k_merged;
+        pieces.push_back(s);
+        b0 = std::min(b0, other.b0);
+        b1 = std::max(b1, other.b1);
+    }
+    if (pieces.size() == 1) return id;
+    const int merged = static_cast<int>(windows_.size());
+    Window m = w;
+    m.b0 = b0;
+    m.b1 = b1;
+    m.parent = -2 - static_cast<int>(merged_pieces_.size());
+    m.next_on_edge = first_window_[w.halfedge];
+    merged_pieces_.push_back(static_cast<int>(pieces.size()));
+    merged_pieces_.insert(merged_pieces_.end(), pieces.begin(), pieces.end());
+    first_window_[w.halfedge] = merged;
+    windows_.push_back(m);
+    window_state_.push_back(k_propagated);
+    stats_.windows_merged += pieces.size() - 1;
+    return merged;
+}
+
+int ExactGeodesic::Impl::piece_covering(int id, double x) const {
+    const int offset = -2 - windows_[id].parent;
+    const int count = merged_pieces_[offset];
+    int best = merged_pieces_[offset + 1];
+    double best_gap = k_infinity;
+    for (int i = 0; i < count; ++i) {
+        const int piece = merged_pieces_[offset + 1 + i];
+        const Window& p = windows_[piece];
+        const double gap = std::max({p.b0 - x, x - p.b1, 0.0});
+        if (gap < best_gap) {
+            best_gap = gap;
+            best = piece;
+        }
+    }
+    return best;
+}
+
+void ExactGeodesic::Impl::propagate_window(int popped) {
+    if (window_state_[popped] != k_pending) return;
+    window_state_[popped] = k_propagated;
+    if (!trim_by_end_vertices(windows_[popped])) {
         ++stats_.windows_pruned;
         return;
     }
+    const int id = merge_with_siblings(popped);
+    const Window w = windows_[id];  // a copy: adding children may reallocate windows_
     ++stats_.windows_propagated;
-    // A source on the edge line sends its rays along the edge: they reach its end vertices (done when the window
-    // was added) but never enter the face.
-    if (!(w.sy < 0.0)) return;
+    // A source beyond the edge line sends no ray into the face. One on the line (a vertex emitting across a
+    // zero-area face) sends rays along the edge, which reached the end vertices when the window was added, and,
+    // when it lies inside the window, rays into the whole face too: the general case below covers those.
+    if (w.sy > 0.0 || (w.sy == 0.0 && !(w.sx >= w.b0 && w.sx <= w.b1))) return;
 
     const int h = w.halfedge;
     const double length = mesh_.length(h);
@@ -534,7 +645,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     }
     if (!stats_.stopped_early && !stops_.empty()) all_stops_settled(k_infinity);
     if (std::isfinite(max_distance_)) settled_radius_ = std::min(settled_radius_, max_distance_);
-    stats_.window_bytes = windows_.capacity() * sizeof(Window);
+    stats_.window_bytes = windows_.capacity() * (sizeof(Window) + 1) + merged_pieces_.capacity() * sizeof(int);
 }
 
 double ExactGeodesic::Impl::vertex_distance(int v) const {
@@ -548,16 +659,19 @@ double ExactGeodesic::Impl::distance(const SurfacePoint& p) const {
 }
 
 SurfacePoint ExactGeodesic::Impl::point_on_halfedge(int h, double x) const {
+    // A crossing that rounding leaves a hair away from a vertex is a passage through that vertex (DESIGN.md §1:
+    // a point has one representation). Moving it there changes the path length only to second order.
     const double length = mesh_.length(h);
-    if (x <= 0.0) return SurfacePoint::at_vertex(mesh_.tail(h));
-    if (x >= length) return SurfacePoint::at_vertex(mesh_.head(h));
+    const double snap = k_vertex_snap * mesh_.size();
+    if (x <= snap) return SurfacePoint::at_vertex(mesh_.tail(h));
+    if (x >= length - snap) return SurfacePoint::at_vertex(mesh_.head(h));
     return SurfacePoint::on_edge(mesh_.tail(h), mesh_.head(h), x / length);
 }
 
 std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint& raw_target) const {
     const SurfacePoint target = mesh_.canonical(raw_target);
     const Best best = best_way_to(target);
-    if (!(best.distance <= settled_radius_)) return {};
+    if (!std::isfinite(best.distance) || !(best.distance <= settled_radius_)) return {};  // unreached
 
     std::vector<SurfacePoint> path{target};
     auto append = [&](const SurfacePoint& p) {
@@ -589,6 +703,7 @@ std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint&
             continue;
         }
         // via == Via::window: `position` is in the frame of the window's halfedge, on the face side.
+        if (windows_[id].parent <= -2) id = piece_covering(id, windows_[id].crossing_of(position));
         const Window& w = windows_[id];
         const int h = w.halfedge;
         const double x = std::clamp(w.crossing_of(position), w.b0, w.b1);

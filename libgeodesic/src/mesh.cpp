@@ -27,10 +27,13 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
     : positions_(std::move(positions)), triangles_(std::move(triangles)) {
     const int nv = num_vertices();
     const int nf = num_faces();
+    Eigen::AlignedBox3d box;
     for (int v = 0; v < nv; ++v) {
         if (!positions_[v].allFinite())
             throw InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate");
+        box.extend(positions_[v]);
     }
+    size_ = nv > 0 ? box.diagonal().norm() : 0.0;
     for (int f = 0; f < nf; ++f) {
         const auto& t = triangles_[f];
         for (int i = 0; i < 3; ++i) {

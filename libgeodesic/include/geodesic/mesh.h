@@ -67,6 +67,8 @@ public:
     int num_boundary_halfedges() const { return num_boundary_halfedges_; }
     double face_area(int f) const;
     double total_area() const;
+    /// Diagonal of the bounding box: the scale for tolerances that must not depend on units.
+    double size() const { return size_; }
 
     /// The 3D position of a surface point. Throws InvalidInput if the point does not refer to this mesh.
     Eigen::Vector3d point(const SurfacePoint& p) const;
@@ -91,6 +93,7 @@ private:
     std::vector<unsigned char> manifold_vertex_;
     std::vector<double> polar_angle_;
     int num_boundary_halfedges_ = 0;
+    double size_ = 0.0;
 };
 
 }  // namespace geotri::geodesic
