@@ -1,0 +1,42 @@
+#pragma once
+// Output for the tools: files that appear only when complete, and the --json summary.
+
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace geotri::tools {
+
+/// Calls `write` on a temporary file in the folder of `path`, then renames it to `path`. If `write` throws or
+/// anything fails, the temporary file is removed and nothing appears under `path` (an older file there stays).
+/// Throws geotri::IOError("PATH: problem").
+void write_file_atomically(const std::string& path, const std::function<void(std::FILE*)>& write);
+
+/// Lower-case extension of a path with its dot (".ply"), or empty.
+std::string extension_of(const std::string& path);
+
+/// A flat JSON object, written on one line in the order of the calls.
+class JsonSummary {
+public:
+    void add(const std::string& key, const std::string& value);
+    void add(const std::string& key, const char* value) { add(key, std::string(value)); }
+    /// Non-finite values become null.
+    void add(const std::string& key, double value);
+    void add(const std::string& key, long long value);
+    void add(const std::string& key, std::size_t value) { add(key, static_cast<long long>(value)); }
+    void add(const std::string& key, int value) { add(key, static_cast<long long>(value)); }
+    void add(const std::string& key, bool value);
+
+    std::string str() const;
+
+private:
+    void add_raw(const std::string& key, std::string json);
+    std::vector<std::pair<std::string, std::string>> fields_;
+};
+
+/// "%.17g", which reads back as the same double; "inf" and "-inf" for infinities.
+std::string format_double(double value);
+
+}  // namespace geotri::tools

@@ -1,0 +1,81 @@
+#include "tool.h"
+
+#include <geodesic/errors.h>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#ifndef GEOTRI_VERSION
+#define GEOTRI_VERSION "unknown"
+#endif
+
+namespace geotri::tools {
+
+namespace {
+
+/// One line, whatever the message holds.
+std::string one_line(std::string message) {
+    for (char& c : message) {
+        if (c == '\n' || c == '\r') c = ' ';
+    }
+    while (!message.empty() && message.back() == ' ') message.pop_back();
+    return message;
+}
+
+void report(const std::string& program, const std::string& message) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), one_line(message).c_str());
+    std::fflush(stderr);
+}
+
+}  // namespace
+
+Tool::Tool(std::string program, int argc, char** argv)
+    : app("", program), program_(std::move(program)), argc_(argc), argv_(argv) {
+    app.set_version_flag("--version", program_ + " " + GEOTRI_VERSION, "Print the version and exit");
+    app.add_flag("-q,--quiet", common.quiet, "No progress and no summary on stderr");
+    app.add_flag("--json", common.json, "Print a machine-readable summary on stdout");
+    app.add_option("--threads", common.threads, "Number of threads (0: all cores)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+}
+
+void Tool::parse() {
+    app.parse(argc_, argv_);
+#ifdef _OPENMP
+    if (common.threads > 0) omp_set_num_threads(common.threads);
+#endif
+}
+
+int run_tool(const std::string& name, int argc, char** argv, const std::function<int(Tool&)>& body) {
+    const std::string program = "geotri-" + name;
+    try {
+        Tool tool(program, argc, argv);
+        try {
+            return body(tool);
+        } catch (const CLI::ParseError& e) {
+            if (e.get_exit_code() == 0) return tool.app.exit(e);  // --help, --version
+            report(program, std::string(e.what()) + " (see --help)");
+            return k_exit_usage;
+        }
+    } catch (const std::bad_alloc&) {
+        report(program, "out of memory");
+    } catch (const std::exception& e) {
+        report(program, e.what());
+    } catch (...) {
+        report(program, "unexpected failure");
+    }
+    return k_exit_failure;
+}
+
+double now_seconds() {
+    using clock = std::chrono::steady_clock;
+    return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+}  // namespace geotri::tools
