@@ -1,0 +1,36 @@
+#pragma once
+// The fine mesh T (DESIGN.md §1): loaded once, exactly, checked, and never changed.
+
+#include <geodesic/mesh.h>
+#include <geotri/mesh_io.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace geotri {
+
+/// T as loaded and checked: closed, edge- and vertex-manifold, consistently oriented, finite coordinates.
+/// Several components are allowed. Zero-area faces are allowed (they are reported in the counts, not refused).
+struct FineMesh {
+    std::string path;                ///< where it was read from (empty when built from arrays)
+    geodesic::Mesh mesh;             ///< positions and triangles in load order, with the geodesic adjacency
+    std::uint64_t checksum = 0;      ///< of the positions (bit patterns) and triangles, as loaded (fine_mesh_checksum)
+    std::vector<int> component;      ///< per vertex: its connected component, numbered in order of first vertex
+    int num_components = 0;
+    int num_zero_area_faces = 0;
+};
+
+/// Reads `path` exactly (read_mesh) and checks it (make_fine_mesh). Throws IOError for a file problem and
+/// TopologyError for a mesh that is not closed, manifold and oriented; every message starts with the path and
+/// says what is wrong and how much of it ("14 boundary edges", "vertex 812 is non-manifold").
+FineMesh load_fine_mesh(const std::string& path);
+
+/// Checks the arrays as load_fine_mesh does; `name` prefixes the messages.
+FineMesh make_fine_mesh(MeshData data, const std::string& name);
+
+/// A checksum of a mesh as loaded: the same arrays always give the same value on every platform.
+std::uint64_t fine_mesh_checksum(const std::vector<Eigen::Vector3d>& positions,
+                                 const std::vector<std::array<int, 3>>& triangles);
+
+}  // namespace geotri

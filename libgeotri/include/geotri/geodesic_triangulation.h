@@ -1,0 +1,65 @@
+#pragma once
+// A geodesic triangulation G of a fine mesh T (DESIGN.md §1): a coarse OpenMesh triangle mesh whose vertices carry
+// their location on T and whose edges carry their geodesic polyline on T.
+
+#include <geodesic/surface_point.h>
+#include <geotri/fine_mesh.h>
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <memory>
+#include <vector>
+
+namespace geotri {
+
+using geodesic::SurfacePoint;
+using Polyline = std::vector<SurfacePoint>;
+
+struct CoarseTraits : public OpenMesh::DefaultTraits {
+    using Point = OpenMesh::Vec3d;
+    using Normal = OpenMesh::Vec3d;
+    VertexAttributes(OpenMesh::Attributes::Status);
+    EdgeAttributes(OpenMesh::Attributes::Status);
+    FaceAttributes(OpenMesh::Attributes::Status);
+    HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
+};
+
+/// The coarse mesh. Its points are the 3D positions of the vertex locations on T.
+using CoarseMesh = OpenMesh::TriMesh_ArrayKernelT<CoarseTraits>;
+
+/// G: the coarse mesh, the location of each coarse vertex on T, and the polyline and length of each coarse edge.
+/// Copies are deep (the fine mesh is shared): an operation that may be refused can work on a copy.
+class GeodesicTriangulation {
+public:
+    /// Takes the coarse mesh as it is; locations and polylines start empty (location: vertex -1; polyline: none).
+    GeodesicTriangulation(std::shared_ptr<const FineMesh> fine, CoarseMesh coarse);
+
+    const FineMesh& fine() const { return *fine_; }
+    const std::shared_ptr<const FineMesh>& shared_fine() const { return fine_; }
+    CoarseMesh& coarse() { return coarse_; }
+    const CoarseMesh& coarse() const { return coarse_; }
+
+    const SurfacePoint& location(OpenMesh::VertexHandle v) const { return coarse_.property(location_, v); }
+    /// Sets the location and moves the coarse point to its 3D position on T.
+    void set_location(OpenMesh::VertexHandle v, const SurfacePoint& p);
+
+    /// The polyline of edge e, oriented along its first halfedge (from from_vertex(halfedge(e, 0))); empty when
+    /// not traced yet.
+    const Polyline& polyline(OpenMesh::EdgeHandle e) const { return coarse_.property(polyline_, e); }
+    /// The polyline of the halfedge h's edge, oriented from from_vertex(h) to to_vertex(h).
+    Polyline path(OpenMesh::HalfedgeHandle h) const;
+    /// Sets the polyline of e, oriented along its first halfedge, and its length (geodesic::path_length).
+    void set_polyline(OpenMesh::EdgeHandle e, Polyline polyline);
+    /// Sets the polyline of h's edge from a path oriented along h.
+    void set_path(OpenMesh::HalfedgeHandle h, Polyline path);
+    double length(OpenMesh::EdgeHandle e) const { return coarse_.property(length_, e); }
+
+private:
+    std::shared_ptr<const FineMesh> fine_;
+    CoarseMesh coarse_;
+    OpenMesh::VPropHandleT<SurfacePoint> location_;
+    OpenMesh::EPropHandleT<Polyline> polyline_;
+    OpenMesh::EPropHandleT<double> length_;
+};
+
+}  // namespace geotri
