@@ -13,6 +13,8 @@ namespace geotri::geodesic {
 
 using detail::k_infinity;
 using detail::Window;
+using detail::EdgeProfile;
+using detail::profile_crossings;
 using Vec2 = Eigen::Vector2d;
 
 namespace {
@@ -34,13 +36,8 @@ constexpr double k_vertex_snap = 1e-12;
 
 enum class Via : std::uint8_t { none, source, vertex, window };
 
-constexpr unsigned char k_pending = 0;
-constexpr unsigned char k_propagated = 1;
-constexpr unsigned char k_merged = 2;
-// Windows of the same ray family (same pseudo-source, unfolded to the same place up to this relative rounding) that
-// touch on an edge are propagated as one.
-constexpr double k_same_source = 1e-13;
-constexpr int k_merge_lookahead = 8;
+// Windows compared with each other on an edge: the most recent ones, which are those the wavefront brings together.
+constexpr int k_compare_lookahead = 4;
 
 /// How a vertex got its distance: from a source directly, along an edge from another vertex, or through a window.
 struct Predecessor {
@@ -82,9 +79,8 @@ private:
     void relax_vertex(int v, double distance, Predecessor predecessor);
     void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
     bool trim_by_end_vertices(Window& w) const;
+    bool trim_by_other_paths(Window& w, int self) const;
     void propagate_window(int id);
-    int merge_with_siblings(int id);
-    int piece_covering(int id, double x) const;
     void emit_from_vertex(int v);
     double incoming_polar_angle(int v) const;
     void seed_from_point(const SurfacePoint& p, int source_index);
@@ -111,9 +107,6 @@ private:
     std::vector<int> first_window_;  // per halfedge
     std::vector<int> touched_halfedges_;
     std::vector<Window> windows_;
-    std::vector<unsigned char> window_state_;  // per window: pending, propagated or merged into another
-    std::vector<int> merged_pieces_;           // for merged windows: a count, then the ids of the pieces
-    std::vector<int> merge_scratch_;
     std::vector<std::pair<double, int>> queue_;  // min-heap; item >= 0 is a window, -1 - v a vertex emission
     std::vector<SurfacePoint> sources_;
     std::vector<StopPoint> stops_;
@@ -147,8 +140,6 @@ void ExactGeodesic::Impl::reset() {
     touched_vertices_.clear();
     touched_halfedges_.clear();
     windows_.clear();
-    window_state_.clear();
-    merged_pieces_.clear();
     queue_.clear();
     sources_.clear();
     stops_.clear();
@@ -212,6 +203,76 @@ bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w) const {
     return w.b0 < w.b1;
 }
 
+namespace {
+
+// Cuts from the ends of [w.b0, w.b1] the runs where `other` (a real path length to the edge's points, defined on
+// [o0, o1]) beats w by more than `slack`. Only the ends can go: a window stays one interval. Returns false when
+// nothing is left.
+bool trim_ends_against(Window& w, const EdgeProfile& other, double o0, double o1, double slack) {
+    const double lo = std::max(w.b0, o0), hi = std::min(w.b1, o1);
+    if (!(lo < hi)) return true;
+    const EdgeProfile mine{w.sx, w.sy, w.sigma};
+    // Only an end of w where `other` is already shorter can go: that test is cheap, the crossings are not.
+    const bool from_start = o0 <= w.b0 && mine.at(w.b0) > other.at(w.b0) + slack;
+    const bool from_end = o1 >= w.b1 && mine.at(w.b1) > other.at(w.b1) + slack;
+    if (!from_start && !from_end) return true;
+    double cuts[4] = {lo, 0.0, 0.0, 0.0};
+    const int roots = profile_crossings(mine, other, lo, hi, cuts + 1);
+    cuts[roots + 1] = hi;
+    // Between crossings one profile stays below the other; three samples guard against a crossing that rounding hid.
+    auto worse = [&](double a, double b) {
+        for (double f : {0.25, 0.5, 0.75}) {
+            const double x = a + f * (b - a);
+            if (!(mine.at(x) > other.at(x) + slack)) return false;
+        }
+        return true;
+    };
+    double b0 = w.b0, b1 = w.b1;
+    if (from_start)
+        for (int i = 0; i <= roots && worse(cuts[i], cuts[i + 1]); ++i) b0 = cuts[i + 1];
+    if (from_end)
+        for (int i = roots; i >= 0 && worse(cuts[i], cuts[i + 1]); --i) b1 = cuts[i];
+    if (!(b0 < b1)) return false;
+    w.b0 = b0;
+    w.b1 = b1;
+    return true;
+}
+
+}  // namespace
+
+bool ExactGeodesic::Impl::trim_by_other_paths(Window& w, int self) const {
+    // Where another path to a point of the edge is shorter than w, no shortest path goes through w there: it could
+    // take the other path to the same point instead. The other paths are the windows on the same edge (either
+    // side), and the paths through the apexes of the two faces of the edge, straight inside their face (Xin and
+    // Wang's filter, done exactly). The other path is kept, so coverage is never lost; both must differ by more
+    // than `slack`, so that two tied paths never remove each other.
+    const int h = w.halfedge;
+    const double length = mesh_.length(h);
+    const double scale = w.sigma + std::abs(w.sx) + std::abs(w.sy) + length;
+    for (int side = 0; side < 2; ++side) {
+        const int list = side == 0 ? h : mesh_.twin(h);
+        if (list < 0) continue;
+        const int apex = mesh_.tail(Mesh::prev(list));
+        const double d_apex = distance_[apex];
+        if (d_apex < k_infinity) {
+            const Vec2 a = mesh_.apex(list);
+            const EdgeProfile through_apex{side == 0 ? a.x() : length - a.x(), a.y(), d_apex};
+            if (!trim_ends_against(w, through_apex, 0.0, length, k_margin * (scale + d_apex))) return false;
+        }
+        int looked = 0;
+        for (int id = first_window_[list]; id >= 0 && looked < k_compare_lookahead; id = windows_[id].next_on_edge) {
+            if (id == self) continue;
+            ++looked;
+            const Window& other = windows_[id];
+            const EdgeProfile theirs{side == 0 ? other.sx : length - other.sx, other.sy, other.sigma};
+            const double o0 = side == 0 ? other.b0 : length - other.b1;
+            const double o1 = side == 0 ? other.b1 : length - other.b0;
+            if (!trim_ends_against(w, theirs, o0, o1, k_margin * (scale + other.sigma))) return false;
+        }
+    }
+    return true;
+}
+
 void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent,
                                      int origin) {
     const double length = mesh_.length(h);
@@ -221,7 +282,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     if (!(b0 < b1)) return;
     Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, first_window_[h]};
     if (w.lower_bound() > max_distance_) return;
-    if (!trim_by_end_vertices(w)) {
+    if (!trim_by_end_vertices(w) || !trim_by_other_paths(w, -1)) {
         ++stats_.windows_pruned;
         return;
     }
@@ -229,7 +290,6 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     if (w.next_on_edge < 0) touched_halfedges_.push_back(h);
     first_window_[h] = id;
     windows_.push_back(w);
-    window_state_.push_back(k_pending);
     ++stats_.windows_created;
     const double tolerance = k_cover * length;
     if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
@@ -245,73 +305,11 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     push_queue(w.lower_bound(), id);
 }
 
-int ExactGeodesic::Impl::merge_with_siblings(int id) {
-    // The same ray family reaches an edge in fragments, one per path of faces. Merging the pending fragments
-    // before crossing the face keeps the window count near one per family and edge.
-    const Window w = windows_[id];
-    const double length = mesh_.length(w.halfedge);
-    const double source_tolerance = k_same_source * (length + w.source().norm() + w.sigma);
-    const double gap_tolerance = k_cover * length;
-    double b0 = w.b0, b1 = w.b1;
-    std::vector<int>& pieces = merge_scratch_;
-    pieces.assign(1, id);
-    // Fragments of one family arrive close together in time, so they sit near the front of the edge's list;
-    // a bounded look keeps the cost constant on edges that many families cross.
-    int looked = 0;
-    for (int s = first_window_[w.halfedge]; s >= 0 && looked < k_merge_lookahead; s = windows_[s].next_on_edge) {
-        ++looked;
-        if (window_state_[s] != k_pending || s == id) continue;
-        const Window& other = windows_[s];
-        if (other.origin != w.origin || std::abs(other.sigma - w.sigma) > source_tolerance ||
-            (other.source() - w.source()).norm() > source_tolerance)
-            continue;
-        if (other.b0 > b1 + gap_tolerance || other.b1 < b0 - gap_tolerance) continue;
-        window_state_[s] = k_merged;
-        pieces.push_back(s);
-        b0 = std::min(b0, other.b0);
-        b1 = std::max(b1, other.b1);
-    }
-    if (pieces.size() == 1) return id;
-    const int merged = static_cast<int>(windows_.size());
-    Window m = w;
-    m.b0 = b0;
-    m.b1 = b1;
-    m.parent = -2 - static_cast<int>(merged_pieces_.size());
-    m.next_on_edge = first_window_[w.halfedge];
-    merged_pieces_.push_back(static_cast<int>(pieces.size()));
-    merged_pieces_.insert(merged_pieces_.end(), pieces.begin(), pieces.end());
-    first_window_[w.halfedge] = merged;
-    windows_.push_back(m);
-    window_state_.push_back(k_propagated);
-    stats_.windows_merged += pieces.size() - 1;
-    return merged;
-}
-
-int ExactGeodesic::Impl::piece_covering(int id, double x) const {
-    const int offset = -2 - windows_[id].parent;
-    const int count = merged_pieces_[offset];
-    int best = merged_pieces_[offset + 1];
-    double best_gap = k_infinity;
-    for (int i = 0; i < count; ++i) {
-        const int piece = merged_pieces_[offset + 1 + i];
-        const Window& p = windows_[piece];
-        const double gap = std::max({p.b0 - x, x - p.b1, 0.0});
-        if (gap < best_gap) {
-            best_gap = gap;
-            best = piece;
-        }
-    }
-    return best;
-}
-
-void ExactGeodesic::Impl::propagate_window(int popped) {
-    if (window_state_[popped] != k_pending) return;
-    window_state_[popped] = k_propagated;
-    if (!trim_by_end_vertices(windows_[popped])) {
+void ExactGeodesic::Impl::propagate_window(int id) {
+    if (!trim_by_end_vertices(windows_[id]) || !trim_by_other_paths(windows_[id], id)) {
         ++stats_.windows_pruned;
         return;
     }
-    const int id = merge_with_siblings(popped);
     const Window w = windows_[id];  // a copy: adding children may reallocate windows_
     ++stats_.windows_propagated;
     // A source beyond the edge line sends no ray into the face. One on the line (a vertex emitting across a
@@ -645,7 +643,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     }
     if (!stats_.stopped_early && !stops_.empty()) all_stops_settled(k_infinity);
     if (std::isfinite(max_distance_)) settled_radius_ = std::min(settled_radius_, max_distance_);
-    stats_.window_bytes = windows_.capacity() * (sizeof(Window) + 1) + merged_pieces_.capacity() * sizeof(int);
+    stats_.window_bytes = windows_.capacity() * sizeof(Window);
 }
 
 double ExactGeodesic::Impl::vertex_distance(int v) const {
@@ -703,7 +701,6 @@ std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint&
             continue;
         }
         // via == Via::window: `position` is in the frame of the window's halfedge, on the face side.
-        if (windows_[id].parent <= -2) id = piece_covering(id, windows_[id].crossing_of(position));
         const Window& w = windows_[id];
         const int h = w.halfedge;
         const double x = std::clamp(w.crossing_of(position), w.b0, w.b1);

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace geotri::geodesic::detail {
 
@@ -45,6 +46,52 @@ struct Window {
         return sx + (p.x() - sx) * (-sy) / (p.y() - sy);
     }
 };
+
+/// The distance that a window gives along its edge line: sigma + sqrt((x - s)^2 + y^2). The windows on the two
+/// halfedges of one edge compare in one frame, with s mirrored.
+struct EdgeProfile {
+    double s;
+    double y;
+    double sigma;
+    double at(double x) const {
+        const double dx = x - s;
+        return sigma + std::sqrt(dx * dx + y * y);
+    }
+};
+
+/// The points of the open interval (lo, hi) where two profiles may be equal, sorted: at most two, the real roots of
+/// the quadratic that squaring the equation gives (squaring may add a root where they differ; callers test the
+/// sign between the roots, so an extra root only splits an interval of one sign).
+inline int profile_crossings(const EdgeProfile& a, const EdgeProfile& b, double lo, double hi, double roots[2]) {
+    // sqrt(u) - sqrt(w) = d with u = (x - a.s)^2 + a.y^2, w = (x - b.s)^2 + b.y^2, d = b.sigma - a.sigma.
+    // u - w = alpha x + beta, so (alpha x + beta - d^2)^2 = 4 d^2 w.
+    const double d = b.sigma - a.sigma;
+    const double d2 = d * d;
+    const double alpha = 2.0 * (b.s - a.s);
+    const double gamma = a.s * a.s - b.s * b.s + a.y * a.y - b.y * b.y - d2;
+    const double qa = alpha * alpha - 4.0 * d2;
+    const double qb = 2.0 * alpha * gamma + 8.0 * d2 * b.s;
+    const double qc = gamma * gamma - 4.0 * d2 * (b.s * b.s + b.y * b.y);
+    double candidates[2];
+    int found = 0;
+    const double scale = std::abs(alpha * alpha) + 4.0 * d2;
+    if (std::abs(qa) <= 1e-12 * scale) {
+        if (qb != 0.0) candidates[found++] = -qc / qb;
+    } else {
+        const double discriminant = qb * qb - 4.0 * qa * qc;
+        if (discriminant >= 0.0) {
+            // The numerically stable pair of roots.
+            const double q = -0.5 * (qb + std::copysign(std::sqrt(discriminant), qb));
+            if (q != 0.0) candidates[found++] = qc / q;
+            candidates[found++] = q / qa;
+        }
+    }
+    int count = 0;
+    for (int i = 0; i < found; ++i)
+        if (candidates[i] > lo && candidates[i] < hi) roots[count++] = candidates[i];
+    if (count == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+    return count;
+}
 
 inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
