@@ -181,6 +181,9 @@ bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w) const {
     // |S - x| - |tail - x| never increases as x moves away from the tail, so the part where the tail's path beats
     // the window is an interval that starts at the tail; likewise for the head. Such a part cannot be on any
     // shortest path (the vertex's path is shorter, or, for a convex vertex, shorter still around it), so it goes.
+    // A source on the edge line (across a zero-area face) sends its rays into the face through the one point
+    // x = sx: trimming could only cut that point off by rounding.
+    if (w.sy == 0.0) return true;
     const int h = w.halfedge;
     const double length = mesh_.length(h);
     const double slack = k_margin * (w.sigma + w.source().norm() + length);
@@ -246,6 +249,7 @@ bool ExactGeodesic::Impl::trim_by_other_paths(Window& w, int self) const {
     // side), and the paths through the apexes of the two faces of the edge, straight inside their face (Xin and
     // Wang's filter, done exactly). The other path is kept, so coverage is never lost; both must differ by more
     // than `slack`, so that two tied paths never remove each other.
+    if (w.sy == 0.0) return true;  // see trim_by_end_vertices
     const int h = w.halfedge;
     const double length = mesh_.length(h);
     const double scale = w.sigma + std::abs(w.sx) + std::abs(w.sy) + length;
@@ -436,6 +440,15 @@ void ExactGeodesic::Impl::emit_from_vertex(int v) {
         // direction v -> origin towards v -> (L, 0).
         const double length = mesh_.length(opposite);
         const Vec2 apex = mesh_.apex(opposite);
+        const double scale = mesh_.length(beyond) / length;
+        if (apex.y() == 0.0) {
+            // A zero-area face with v inside its opposite edge: every direction of v's corner (π) leaves through
+            // that edge at v's own position, so v emits from that point into the face beyond, all of it (more
+            // than the shadow is only more work, never wrong).
+            if (apex.x() > 0.0 && apex.x() < length)
+                add_window(beyond, 0.0, mesh_.length(beyond), Vec2(length - apex.x(), 0.0), d, -1, v);
+            continue;
+        }
         auto hit = [&](double angle) {
             const Vec2 toward = -apex;
             const double c = std::cos(angle), s = std::sin(angle);
@@ -446,7 +459,6 @@ void ExactGeodesic::Impl::emit_from_vertex(int v) {
         const double x0 = a0 == 0.0 ? 0.0 : hit(a0);
         const double x1 = a1 == corner ? length : hit(a1);
         const Vec2 source(length - apex.x(), -apex.y());
-        const double scale = mesh_.length(beyond) / length;
         add_window(beyond, (length - x1) * scale, (length - x0) * scale, source, d, -1, v);
     }
 }

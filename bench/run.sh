@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Runs the propagation benchmark on the meshes of the libgeodesic issue and prints a Markdown table on stdout.
+#
+#   bench/run.sh [--no-cgal] [--repeat N]
+#
+# Builds geotri-bench-propagation in Release (with CGAL when libcgal-dev is installed: scripts/install-deps.sh
+# --bench). The shared real meshes are read from ../shared/data, or from $GEOTRI_SHARED_DATA; those that are
+# missing are skipped with a note on stderr. Times are CPU seconds, the median of --repeat runs (default 3).
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+build_dir=${BUILD_DIR:-build}
+data=${GEOTRI_SHARED_DATA:-../shared/data}
+
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build_dir" -j"$(nproc)" --target geotri-bench-propagation >/dev/null
+bench=$build_dir/bench/geotri-bench-propagation
+
+meshes=(gen:icosphere:100k gen:torus:100k gen:cube:100k gen:grid:100k gen:noisy-sphere:100k
+        gen:icosphere:400k gen:icosphere:1M)
+for file in classic/lucy_100k.ply classic/bunny_closed_cgal.off anatomy/brain_conte69_32k_lh.ply \
+            anatomy/lumbar_spine_L2-L5_mean.ply cad/turbineblade.ply; do
+  if [[ -f "$data/$file" ]]; then
+    meshes+=("$data/$file")
+  else
+    echo "bench/run.sh: skipping $file: not found under $data" >&2
+  fi
+done
+
+"$bench" "$@" "${meshes[0]}"
+for mesh in "${meshes[@]:1}"; do
+  "$bench" --no-header "$@" "$mesh"
+done
