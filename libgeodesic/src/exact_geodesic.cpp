@@ -675,7 +675,9 @@ SurfacePoint ExactGeodesic::Impl::point_on_halfedge(int h, double x) const {
     const double snap = k_vertex_snap * mesh_.size();
     if (x <= snap) return SurfacePoint::at_vertex(mesh_.tail(h));
     if (x >= length - snap) return SurfacePoint::at_vertex(mesh_.head(h));
-    return SurfacePoint::on_edge(mesh_.tail(h), mesh_.head(h), x / length);
+    const int tail = mesh_.tail(h), head = mesh_.head(h);
+    return tail < head ? SurfacePoint::on_edge(tail, head, x / length)
+                       : SurfacePoint::on_edge(head, tail, (length - x) / length);
 }
 
 std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint& raw_target) const {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 
 namespace geotri::geodesic {
 
@@ -19,6 +20,19 @@ std::string edge_name(int a, int b) { return "(" + std::to_string(a) + "," + std
 // Angle between u and v, robust for needles and zero-area faces (atan2 instead of acos).
 double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
     return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
+// Edge points name their edge with the smaller vertex first (SurfacePoint). Reversing costs a rounding of 1 - t
+// for t < 1/2; producers that know the distance from either end (path tracing) build the ordered form directly.
+// A reversed t that rounds to an end is that vertex.
+SurfacePoint ordered_edge_point(int v0, int v1, double t) {
+    if (v0 > v1) {
+        std::swap(v0, v1);
+        t = 1.0 - t;
+    }
+    if (t == 0.0) return SurfacePoint::at_vertex(v0);
+    if (t == 1.0) return SurfacePoint::at_vertex(v1);
+    return SurfacePoint::on_edge(v0, v1, t);
 }
 
 }  // namespace
@@ -189,9 +203,7 @@ SurfacePoint Mesh::canonical(const SurfacePoint& p) const {
                 throw InvalidInput("there is no edge " + edge_name(p.edge_v0, p.edge_v1));
             if (!std::isfinite(p.t) || p.t < 0.0 || p.t > 1.0)
                 throw InvalidInput("edge parameter " + std::to_string(p.t) + " is outside [0, 1]");
-            if (p.t == 0.0) return SurfacePoint::at_vertex(p.edge_v0);
-            if (p.t == 1.0) return SurfacePoint::at_vertex(p.edge_v1);
-            return p;
+            return ordered_edge_point(p.edge_v0, p.edge_v1, p.t);
         }
         case PointKind::face: {
             if (p.face < 0 || p.face >= num_faces())
@@ -220,7 +232,7 @@ SurfacePoint Mesh::canonical(const SurfacePoint& p) const {
                 for (int i = 0; i < 3; ++i) {
                     if (b[i] == 0.0) {
                         const int a = (i + 1) % 3, c = (i + 2) % 3;
-                        return SurfacePoint::on_edge(t[a], t[c], b[c] / (b[a] + b[c]));
+                        return ordered_edge_point(t[a], t[c], b[c] / (b[a] + b[c]));
                     }
                 }
             }

@@ -29,6 +29,7 @@ Polyline GeodesicTriangulation::path(OpenMesh::HalfedgeHandle h) const {
 }
 
 void GeodesicTriangulation::set_polyline(OpenMesh::EdgeHandle e, Polyline polyline) {
+    for (SurfacePoint& p : polyline) p = fine_->mesh.canonical(p);  // one representation per point (DESIGN.md §1)
     coarse_.property(length_, e) = geodesic::path_length(fine_->mesh, polyline);
     coarse_.property(polyline_, e) = std::move(polyline);
 }

@@ -48,7 +48,8 @@ public:
     const Polyline& polyline(OpenMesh::EdgeHandle e) const { return coarse_.property(polyline_, e); }
     /// The polyline of the halfedge h's edge, oriented from from_vertex(h) to to_vertex(h).
     Polyline path(OpenMesh::HalfedgeHandle h) const;
-    /// Sets the polyline of e, oriented along its first halfedge, and its length (geodesic::path_length).
+    /// Sets the polyline of e, oriented along its first halfedge, with every point in its canonical form
+    /// (geodesic::Mesh::canonical, which throws InvalidInput for a point not on T), and its length.
     void set_polyline(OpenMesh::EdgeHandle e, Polyline polyline);
     /// Sets the polyline of h's edge from a path oriented along h.
     void set_path(OpenMesh::HalfedgeHandle h, Polyline path);
