@@ -1,0 +1,140 @@
+// geotri-decimate: a coarse mesh of a closed triangle mesh by halfedge collapses, with the coarse vertices at exact
+// positions of the input's vertices and every component's topology kept.
+//
+//   geotri-decimate INPUT -o COARSE (--faces N | --vertices N | --ratio R | --coarsest) [--json] [--quiet]
+
+#include "output.h"
+#include "progress.h"
+#include "tool.h"
+
+#include <geotri/decimate.h>
+#include <geotri/fine_mesh.h>
+#include <geotri/mesh_io.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace {
+
+namespace tools = geotri::tools;
+
+struct Arguments {
+    std::string input;
+    std::string output;
+    std::size_t faces = 0;
+    std::size_t vertices = 0;
+    double ratio = 0.0;
+    bool coarsest = false;
+    std::string strategy = "multiple-choice";
+};
+
+CLI::Validator coarse_extension() {
+    return CLI::Validator(
+        [](std::string& path) -> std::string {
+            const std::string ext = tools::extension_of(path);
+            if (ext == ".off" || ext == ".obj" || ext == ".ply") return {};
+            return "'" + path + "' should end in .off, .obj or .ply";
+        },
+        "");
+}
+
+int run(tools::Tool& tool) {
+    CLI::App& app = tool.app;
+    app.description("Decimates a closed triangle mesh by halfedge collapses: the coarse vertices are input vertices at\n"
+                    "their exact positions, and every component keeps its topology (genus). The target is split\n"
+                    "between the components in proportion to their area.");
+    Arguments args;
+    app.add_option("INPUT", args.input, "Closed triangle mesh: .stl, .off, .obj or .ply")
+        ->required()
+        ->check(CLI::ExistingFile);
+    app.add_option("-o,--output", args.output, "Coarse mesh: .off, .obj or .ply (exact coordinates)")
+        ->required()
+        ->check(coarse_extension());
+    // Exactly one target, checked by CLI11 while parsing.
+    CLI::Option_group* target = app.add_option_group("Target", "Exactly one of these");
+    target->add_option("--faces", args.faces, "At most this many faces in all")->check(CLI::PositiveNumber);
+    target->add_option("--vertices", args.vertices, "At most this many vertices in all")->check(CLI::PositiveNumber);
+    target->add_option("--ratio", args.ratio, "At most this fraction of the input's faces, in (0, 1]")
+        ->check(CLI::Validator(
+            [](std::string& value) -> std::string {
+                const double r = std::strtod(value.c_str(), nullptr);
+                return r > 0.0 && r <= 1.0 ? std::string() : "--ratio must be in (0, 1], not " + value;
+            },
+            "(0, 1]"));
+    target->add_flag("--coarsest", args.coarsest, "As coarse as each component's topology allows (a sphere: 4 faces)");
+    target->require_option(1);
+    app.add_option("--strategy", args.strategy,
+                   "multiple-choice (default: random candidates while far from the target) or priority-queue")
+        ->check(CLI::IsMember({"multiple-choice", "priority-queue"}));
+    tool.parse();
+
+    tools::Progress progress(tool.program(), tool.verbose());
+    progress.stage("loading " + args.input);
+    const double load_start = tools::now_seconds();
+    const geotri::FineMesh fine = geotri::load_fine_mesh(args.input);
+    const double load_seconds = tools::now_seconds() - load_start;
+
+    geotri::DecimateOptions options;
+    options.target_faces = args.faces;
+    options.target_vertices = args.vertices;
+    options.ratio = args.ratio;
+    options.coarsest = args.coarsest;
+    options.strategy = args.strategy == "priority-queue" ? geotri::DecimateStrategy::priority_queue
+                                                         : geotri::DecimateStrategy::multiple_choice;
+    options.progress = [&progress](const geotri::DecimateProgress& p) {
+        const double to_remove = double(p.fine_faces) - double(p.target_faces);
+        if (to_remove > 0) progress.update((double(p.fine_faces) - double(p.current_faces)) / to_remove);
+        return true;
+    };
+    progress.stage("decimating");
+    const double decimate_start = tools::now_seconds();
+    const geotri::DecimateResult result = geotri::decimate(fine, options);
+    const double decimate_seconds = tools::now_seconds() - decimate_start;
+
+    progress.stage("writing " + args.output);
+    const double write_start = tools::now_seconds();
+    geotri::write_mesh(args.output, result.coarse);
+    const double write_seconds = tools::now_seconds() - write_start;
+    progress.clear();
+
+    int min_faces = 0;
+    for (const geotri::DecimateComponent& c : result.components) min_faces += c.min_faces;
+    const std::size_t coarse_vertices = result.coarse.positions.size();
+    const std::size_t coarse_faces = result.coarse.triangles.size();
+    if (tool.common.json) {
+        tools::JsonSummary summary;
+        summary.add("input", args.input);
+        summary.add("vertices", fine.mesh.num_vertices());
+        summary.add("faces", fine.mesh.num_faces());
+        summary.add("components", fine.num_components);
+        summary.add("target_faces", result.target_faces);
+        summary.add("min_faces", min_faces);
+        summary.add("coarse_vertices", coarse_vertices);
+        summary.add("coarse_faces", coarse_faces);
+        summary.add("target_reached", result.target_reached);
+        summary.add("strategy", args.strategy);
+        summary.add("load_seconds", load_seconds);
+        summary.add("decimate_seconds", decimate_seconds);
+        summary.add("write_seconds", write_seconds);
+        summary.add("output", args.output);
+        std::printf("%s\n", summary.str().c_str());
+    }
+    if (tool.verbose()) {
+        std::fprintf(stderr, "%s: %d vertices, %d faces, %d component%s -> %zu vertices, %zu faces (load %.3f s, "
+                             "decimate %.3f s)\n",
+                     tool.program().c_str(), fine.mesh.num_vertices(), fine.mesh.num_faces(), fine.num_components,
+                     fine.num_components == 1 ? "" : "s", coarse_vertices, coarse_faces, load_seconds,
+                     decimate_seconds);
+        if (!result.target_reached) {
+            std::fprintf(stderr, "%s: target of %zu faces not reached: the topology needs at least %d, and no further "
+                                 "collapse keeps it and the triangles' shape\n",
+                         tool.program().c_str(), result.target_faces, min_faces);
+        }
+    }
+    return tools::k_exit_ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return tools::run_tool("decimate", argc, argv, run); }
