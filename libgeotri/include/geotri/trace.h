@@ -1,0 +1,44 @@
+#pragma once
+// Tracing: each coarse vertex located on T, then each coarse edge made the exact shortest geodesic between its
+// ends (DESIGN.md §3, §4).
+
+#include <geotri/geodesic_triangulation.h>
+#include <geotri/mesh_io.h>
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace geotri {
+
+struct TraceOptions {
+    int threads = 0;  ///< 0: as many as OpenMP likes; the result is the same for any count
+    /// Called with (done, total) propagations; may be called from any thread but never concurrently.
+    std::function<void(int, int)> progress;
+};
+
+struct TraceResult {
+    int propagations = 0;
+    double largest_location_move = 0.0;  ///< how far a coarse vertex had to move to land on T
+    int largest_move_vertex = -1;        ///< the coarse vertex that moved farthest (-1 when none moved)
+    int moved_vertices = 0;              ///< coarse vertices that did not coincide exactly with a vertex of T
+    double longest_propagation = 0.0;    ///< the largest geodesic radius that one propagation had to reach
+    std::size_t windows_created = 0;     ///< summed over every propagation (libgeodesic's PropagationStats)
+    std::size_t polyline_points = 0;     ///< summed over every edge polyline
+    double seconds = 0.0;
+};
+
+/// Locates every coarse vertex on T (exact coincidence with a fine vertex, else the closest point of T) and
+/// traces every edge: each edge's polyline becomes the exact shortest geodesic between the locations of its ends.
+/// Each edge is traced from one of its ends only; the result is bit-identical for any thread count.
+/// Throws InvalidInput when a coarse component does not lie on one fine component, when two coarse components lie
+/// on the same fine component, or when two coarse vertices land on the same point of T; NumericalError if
+/// libgeodesic finds no path between two ends on the same component. Progress goes through options.progress only.
+TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options = {});
+
+/// The coarse mesh of arrays as read_mesh() gives them, in the same vertex and face order, with the points as given.
+/// Throws TopologyError("NAME: problem") unless it is a closed, edge- and vertex-manifold, consistently oriented
+/// triangle mesh without isolated vertices; InvalidInput for indices out of range or repeated within a face.
+CoarseMesh make_coarse_mesh(const MeshData& data, const std::string& name);
+
+}  // namespace geotri

@@ -1,0 +1,477 @@
+// GCC 12 warns inside OpenMesh's PropertyT<Vec3d>::push_back(), whose default-constructed point is deliberately
+// left uninitialised; building a coarse mesh instantiates it here.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
+#include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
+#include <geotri/trace.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace geotri {
+
+namespace {
+
+using geodesic::PointKind;
+using OpenMesh::EdgeHandle;
+using OpenMesh::HalfedgeHandle;
+using OpenMesh::VertexHandle;
+
+std::uint64_t directed_key(int a, int b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+std::string plural(std::size_t n, const std::string& what) {
+    return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+// ---- Locating coarse vertices ----------------------------------------------------------------------------------
+
+/// Exact position key: the bit patterns of the coordinates, with -0.0 folded onto 0.0 so that equal values match.
+struct PositionKey {
+    std::uint64_t bits[3];
+    bool operator==(const PositionKey& o) const {
+        return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
+    }
+};
+
+struct PositionKeyHash {
+    std::size_t operator()(const PositionKey& k) const {
+        std::uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (std::uint64_t b : k.bits) h = (h ^ b) * 0x100000001b3ull + (h >> 29);
+        return static_cast<std::size_t>(h);
+    }
+};
+
+PositionKey key_of(const Eigen::Vector3d& p) {
+    PositionKey key{};
+    for (int i = 0; i < 3; ++i) {
+        const double x = p[i] == 0.0 ? 0.0 : p[i];
+        std::memcpy(&key.bits[i], &x, sizeof x);
+    }
+    return key;
+}
+
+/// The closest point of triangle (a, b, c) to p, as barycentric coordinates (Voronoi regions of the vertices,
+/// edges and interior, so that the coordinates of a vertex or edge region are exact zeros).
+std::array<double, 3> closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c) {
+    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return {1.0, 0.0, 0.0};
+    const Eigen::Vector3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0.0 && d4 <= d3) return {0.0, 1.0, 0.0};
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+        const double t = d1 / (d1 - d3);
+        return {1.0 - t, t, 0.0};
+    }
+    const Eigen::Vector3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0.0 && d5 <= d6) return {0.0, 0.0, 1.0};
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+        const double t = d2 / (d2 - d6);
+        return {1.0 - t, 0.0, t};
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+        const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return {0.0, 1.0 - t, t};
+    }
+    const double denom = va + vb + vc;
+    if (!(denom > 0.0)) return {std::nan(""), 0.0, 0.0};  // a degenerate face: its edges belong to its neighbours
+    const double v = vb / denom, w = vc / denom;
+    return {1.0 - v - w, v, w};
+}
+
+/// The closest point of T to x, brute force over the faces (ties go to the lowest face index).
+geodesic::SurfacePoint closest_point(const geodesic::Mesh& fine, const Eigen::Vector3d& x) {
+    double best = std::numeric_limits<double>::infinity();
+    int best_face = -1;
+    std::array<double, 3> best_bary{};
+    for (int f = 0; f < fine.num_faces(); ++f) {
+        const auto& t = fine.triangle(f);
+        const Eigen::Vector3d &a = fine.position(t[0]), &b = fine.position(t[1]), &c = fine.position(t[2]);
+        const std::array<double, 3> bary = closest_on_triangle(x, a, b, c);
+        if (!std::isfinite(bary[0])) continue;
+        const double d = (bary[0] * a + bary[1] * b + bary[2] * c - x).squaredNorm();
+        if (d < best) {
+            best = d;
+            best_face = f;
+            best_bary = bary;
+        }
+    }
+    if (best_face < 0) throw NumericalError("no face of the fine mesh has a closest point (all faces degenerate?)");
+    for (double& b : best_bary) b = std::max(b, 0.0);
+    geodesic::SurfacePoint p = fine.canonical(geodesic::SurfacePoint::in_face(best_face, best_bary));
+    if (p.kind == PointKind::face) {
+        // Make the coordinates sum to exactly 1, so that canonical() leaves them as they are: a location then
+        // survives a write and read of the .gtri file bit for bit.
+        std::array<double, 3> b = p.bary;
+        b[2] = 1.0 - (b[0] + b[1]);
+        if (b[2] > 0.0 && b[0] + b[1] + b[2] == 1.0) p.bary = b;
+    }
+    return p;
+}
+
+int fine_component_of(const FineMesh& fine, const geodesic::SurfacePoint& p) {
+    switch (p.kind) {
+        case PointKind::vertex: return fine.component[static_cast<std::size_t>(p.vertex)];
+        case PointKind::edge: return fine.component[static_cast<std::size_t>(p.edge_v0)];
+        case PointKind::face: return fine.component[static_cast<std::size_t>(fine.mesh.triangle(p.face)[0])];
+    }
+    return -1;
+}
+
+int find_root(std::vector<int>& parent, int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+}
+
+/// Sets every coarse vertex's location; returns the move figures in `result`.
+void locate_vertices(GeodesicTriangulation& g, TraceResult& result) {
+    const FineMesh& fine = g.fine();
+    const CoarseMesh& coarse = g.coarse();
+    std::unordered_map<PositionKey, int, PositionKeyHash> fine_vertex_at;
+    fine_vertex_at.reserve(static_cast<std::size_t>(fine.mesh.num_vertices()));
+    for (int v = 0; v < fine.mesh.num_vertices(); ++v) fine_vertex_at.emplace(key_of(fine.mesh.position(v)), v);
+
+    const int n = static_cast<int>(coarse.n_vertices());
+    std::vector<geodesic::SurfacePoint> location(static_cast<std::size_t>(n));
+    std::vector<int> moved;
+    for (int v = 0; v < n; ++v) {
+        const auto& q = coarse.point(VertexHandle(v));
+        const auto found = fine_vertex_at.find(key_of(Eigen::Vector3d(q[0], q[1], q[2])));
+        if (found != fine_vertex_at.end()) {
+            location[static_cast<std::size_t>(v)] = geodesic::SurfacePoint::at_vertex(found->second);
+        } else {
+            moved.push_back(v);
+        }
+    }
+    // Each search is independent and deterministic, so the order of the threads does not matter.
+    std::vector<std::exception_ptr> errors(moved.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (long i = 0; i < static_cast<long>(moved.size()); ++i) {
+        try {
+            const auto& q = coarse.point(VertexHandle(moved[static_cast<std::size_t>(i)]));
+            location[static_cast<std::size_t>(moved[static_cast<std::size_t>(i)])] =
+                closest_point(fine.mesh, Eigen::Vector3d(q[0], q[1], q[2]));
+        } catch (...) {
+            errors[static_cast<std::size_t>(i)] = std::current_exception();
+        }
+    }
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+
+    result.moved_vertices = static_cast<int>(moved.size());
+    result.largest_location_move = 0.0;
+    result.largest_move_vertex = -1;
+    for (const int v : moved) {
+        const auto& q = coarse.point(VertexHandle(v));
+        const double move =
+            (fine.mesh.point(location[static_cast<std::size_t>(v)]) - Eigen::Vector3d(q[0], q[1], q[2])).norm();
+        if (result.largest_move_vertex < 0 || move > result.largest_location_move) {
+            result.largest_location_move = move;
+            result.largest_move_vertex = v;
+        }
+    }
+    for (int v = 0; v < n; ++v) g.set_location(VertexHandle(v), location[static_cast<std::size_t>(v)]);
+}
+
+/// Each coarse component on one fine component, no two coarse components on the same one, no two coarse vertices
+/// at the same point: otherwise some edge could not be a geodesic between distinct points.
+void check_locations(const GeodesicTriangulation& g) {
+    const CoarseMesh& coarse = g.coarse();
+    const int n = static_cast<int>(coarse.n_vertices());
+    std::vector<int> parent(static_cast<std::size_t>(n));
+    std::iota(parent.begin(), parent.end(), 0);
+    for (auto e : coarse.edges()) {
+        const int a = find_root(parent, coarse.from_vertex_handle(coarse.halfedge_handle(e, 0)).idx());
+        const int b = find_root(parent, coarse.to_vertex_handle(coarse.halfedge_handle(e, 0)).idx());
+        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+    std::map<int, int> first_vertex_of_root;          // coarse component (root) -> its first vertex
+    std::map<int, int> coarse_root_of_fine_component;  // fine component -> coarse component (root)
+    std::map<std::string, int> vertex_at;
+    for (int v = 0; v < n; ++v) {
+        const geodesic::SurfacePoint& p = g.location(VertexHandle(v));
+        const int root = find_root(parent, v);
+        const int component = fine_component_of(g.fine(), p);
+        const auto first = first_vertex_of_root.emplace(root, v);
+        const int first_component = fine_component_of(g.fine(), g.location(VertexHandle(first.first->second)));
+        if (component != first_component)
+            throw InvalidInput("coarse vertices " + std::to_string(first.first->second) + " and " +
+                               std::to_string(v) + " belong to one coarse component but lie on different components "
+                               "of the fine mesh (" + std::to_string(first_component) + " and " +
+                               std::to_string(component) + ")");
+        const auto owner = coarse_root_of_fine_component.emplace(component, root);
+        if (owner.first->second != root)
+            throw InvalidInput("coarse vertices " + std::to_string(first_vertex_of_root[owner.first->second]) +
+                               " and " + std::to_string(v) + " belong to different coarse components but lie on "
+                               "the same component of the fine mesh (" + std::to_string(component) + ")");
+        const auto same = vertex_at.emplace(geodesic::to_spec(p), v);
+        if (!same.second)
+            throw InvalidInput("coarse vertices " + std::to_string(same.first->second) + " and " + std::to_string(v) +
+                               " lie on the same point of the fine mesh (" + same.first->first + ")");
+    }
+}
+
+// ---- Balancing the edges between their ends -------------------------------------------------------------------
+
+struct Propagation {
+    int source = -1;                     ///< coarse vertex
+    double reach = 0.0;                  ///< straight-line length of its longest assigned edge
+    std::vector<HalfedgeHandle> edges;   ///< leaving the source, in edge index order
+};
+
+/// Assigns every edge to one of its ends. Edges are taken longest first (straight-line length between the
+/// located ends). An edge whose end already propagates joins that propagation for free: being shorter than every
+/// edge taken before, it does not make that propagation reach any farther. Otherwise a propagation opens at the
+/// end with more edges still to come, which can then absorb them. So every propagation reaches as far as its
+/// longest edge needs and no farther, and the propagations form a small vertex cover of the coarse graph (about
+/// half the vertices on a typical triangulation, instead of all of them).
+std::vector<Propagation> balance_edges(const GeodesicTriangulation& g) {
+    const CoarseMesh& coarse = g.coarse();
+    const int n = static_cast<int>(coarse.n_vertices());
+    std::vector<Eigen::Vector3d> position(static_cast<std::size_t>(n));
+    for (int v = 0; v < n; ++v) position[static_cast<std::size_t>(v)] = g.fine().mesh.point(g.location(VertexHandle(v)));
+
+    struct Candidate {
+        double length;
+        int edge;
+    };
+    std::vector<Candidate> order;
+    order.reserve(coarse.n_edges());
+    std::vector<int> remaining(static_cast<std::size_t>(n), 0);
+    for (auto e : coarse.edges()) {
+        const HalfedgeHandle h = coarse.halfedge_handle(e, 0);
+        const int a = coarse.from_vertex_handle(h).idx(), b = coarse.to_vertex_handle(h).idx();
+        order.push_back({(position[static_cast<std::size_t>(a)] - position[static_cast<std::size_t>(b)]).norm(),
+                         e.idx()});
+        ++remaining[static_cast<std::size_t>(a)];
+        ++remaining[static_cast<std::size_t>(b)];
+    }
+    std::sort(order.begin(), order.end(), [](const Candidate& x, const Candidate& y) {
+        return x.length != y.length ? x.length > y.length : x.edge < y.edge;
+    });
+
+    std::vector<int> propagation_of(static_cast<std::size_t>(n), -1);
+    std::vector<Propagation> propagations;
+    std::vector<std::vector<int>> assigned;  // per propagation: edge indices
+    for (const Candidate& c : order) {
+        const EdgeHandle e(c.edge);
+        const HalfedgeHandle h = coarse.halfedge_handle(e, 0);
+        const int a = coarse.from_vertex_handle(h).idx(), b = coarse.to_vertex_handle(h).idx();
+        --remaining[static_cast<std::size_t>(a)];
+        --remaining[static_cast<std::size_t>(b)];
+        const int pa = propagation_of[static_cast<std::size_t>(a)], pb = propagation_of[static_cast<std::size_t>(b)];
+        int chosen;
+        if (pa >= 0 && pb >= 0) {
+            // Both are free; the one that reaches less gets it, so that the stop points spread over both.
+            chosen = propagations[static_cast<std::size_t>(pb)].reach < propagations[static_cast<std::size_t>(pa)].reach
+                         ? b : a;
+        } else if (pa >= 0 || pb >= 0) {
+            chosen = pa >= 0 ? a : b;
+        } else {
+            chosen = remaining[static_cast<std::size_t>(b)] > remaining[static_cast<std::size_t>(a)] ? b : a;
+            propagation_of[static_cast<std::size_t>(chosen)] = static_cast<int>(propagations.size());
+            propagations.push_back({chosen, c.length, {}});
+            assigned.emplace_back();
+        }
+        assigned[static_cast<std::size_t>(propagation_of[static_cast<std::size_t>(chosen)])].push_back(c.edge);
+    }
+    for (std::size_t i = 0; i < propagations.size(); ++i) {
+        std::vector<int>& edges = assigned[i];
+        std::sort(edges.begin(), edges.end());
+        for (const int e : edges) {
+            HalfedgeHandle h = coarse.halfedge_handle(EdgeHandle(e), 0);
+            if (coarse.from_vertex_handle(h).idx() != propagations[i].source) h = coarse.opposite_halfedge_handle(h);
+            propagations[i].edges.push_back(h);
+        }
+    }
+    // The farthest first, so that the dynamic schedule does not end waiting on one long propagation.
+    std::sort(propagations.begin(), propagations.end(), [](const Propagation& x, const Propagation& y) {
+        return x.reach != y.reach ? x.reach > y.reach : x.source < y.source;
+    });
+    return propagations;
+}
+
+}  // namespace
+
+// ---- The coarse mesh from arrays -------------------------------------------------------------------------------
+
+CoarseMesh make_coarse_mesh(const MeshData& data, const std::string& name) {
+    const std::string prefix = name.empty() ? std::string() : name + ": ";
+    const int n = static_cast<int>(data.positions.size());
+    if (data.triangles.empty()) throw TopologyError(prefix + "coarse mesh has no faces");
+    std::unordered_map<std::uint64_t, int> face_of_halfedge;
+    face_of_halfedge.reserve(3 * data.triangles.size());
+    for (std::size_t f = 0; f < data.triangles.size(); ++f) {
+        const auto& t = data.triangles[f];
+        for (int i = 0; i < 3; ++i) {
+            if (t[i] < 0 || t[i] >= n)
+                throw InvalidInput(prefix + "face " + std::to_string(f) + " refers to vertex " +
+                                   std::to_string(t[i]) + ", out of range [0, " + std::to_string(n) + ")");
+        }
+        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+            throw InvalidInput(prefix + "face " + std::to_string(f) + " repeats a vertex");
+        for (int i = 0; i < 3; ++i) {
+            const int a = t[i], b = t[(i + 1) % 3];
+            const auto inserted = face_of_halfedge.emplace(directed_key(a, b), static_cast<int>(f));
+            if (!inserted.second)
+                throw TopologyError(prefix + "edge " + std::to_string(a) + "-" + std::to_string(b) +
+                                    " is used twice in the same direction (faces " +
+                                    std::to_string(inserted.first->second) + " and " + std::to_string(f) +
+                                    "): non-manifold or inconsistently oriented");
+        }
+    }
+    std::size_t boundary = 0;
+    for (const auto& entry : face_of_halfedge) {
+        const int a = static_cast<int>(entry.first >> 32), b = static_cast<int>(entry.first & 0xffffffffu);
+        if (face_of_halfedge.count(directed_key(b, a)) == 0) ++boundary;
+    }
+    if (boundary > 0) throw TopologyError(prefix + "coarse mesh is not closed (" + plural(boundary, "boundary edge") + ")");
+
+    // Around each vertex, face (v, a, b) links a to b; the links form one cycle exactly when v is manifold.
+    std::vector<int> degree(static_cast<std::size_t>(n), 0);
+    for (const auto& t : data.triangles)
+        for (int v : t) ++degree[static_cast<std::size_t>(v)];
+    for (int v = 0; v < n; ++v)
+        if (degree[static_cast<std::size_t>(v)] == 0)
+            throw TopologyError(prefix + "coarse vertex " + std::to_string(v) + " is used by no face");
+    std::unordered_map<std::uint64_t, int> link;  // (v, a) -> b
+    link.reserve(3 * data.triangles.size());
+    for (const auto& t : data.triangles)
+        for (int i = 0; i < 3; ++i) link.emplace(directed_key(t[i], t[(i + 1) % 3]), t[(i + 2) % 3]);
+    std::vector<char> seen(static_cast<std::size_t>(n), 0);
+    for (const auto& t : data.triangles)
+        for (int i = 0; i < 3; ++i) {
+            const int v = t[i];
+            if (seen[static_cast<std::size_t>(v)]) continue;
+            seen[static_cast<std::size_t>(v)] = 1;
+            const int start = t[(i + 1) % 3];
+            int a = start, steps = 0;
+            do {
+                a = link.at(directed_key(v, a));
+                ++steps;
+            } while (a != start && steps <= degree[static_cast<std::size_t>(v)]);
+            if (steps != degree[static_cast<std::size_t>(v)])
+                throw TopologyError(prefix + "coarse vertex " + std::to_string(v) +
+                                    " is non-manifold (its faces form more than one fan)");
+        }
+
+    CoarseMesh coarse;
+    coarse.reserve(static_cast<std::size_t>(n), 3 * data.triangles.size() / 2, data.triangles.size());
+    for (const Eigen::Vector3d& p : data.positions) coarse.add_vertex(CoarseMesh::Point(p.x(), p.y(), p.z()));
+    for (std::size_t f = 0; f < data.triangles.size(); ++f) {
+        const auto& t = data.triangles[f];
+        const auto face = coarse.add_face(VertexHandle(t[0]), VertexHandle(t[1]), VertexHandle(t[2]));
+        if (!face.is_valid()) throw TopologyError(prefix + "face " + std::to_string(f) + " cannot be added");
+    }
+    return coarse;
+}
+
+// ---- Tracing ---------------------------------------------------------------------------------------------------
+
+TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    TraceResult result;
+    locate_vertices(g, result);
+    check_locations(g);
+
+    const std::vector<Propagation> propagations = balance_edges(g);
+    const long total = static_cast<long>(propagations.size());
+    const FineMesh& fine = g.fine();
+
+    // Results land in per-propagation slots and are merged afterwards in one fixed order, so that neither the
+    // thread count nor the schedule can change the output.
+    std::vector<std::vector<Polyline>> paths(propagations.size());
+    std::vector<std::size_t> windows(propagations.size(), 0);
+    std::vector<std::exception_ptr> errors(propagations.size());
+    std::atomic<bool> failed{false};
+    int done = 0;
+#ifdef _OPENMP
+    const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+#endif
+#pragma omp parallel num_threads(threads)
+    {
+        std::unique_ptr<geodesic::ExactGeodesic> geodesic;  // one per thread, reused across sources
+#pragma omp for schedule(dynamic, 1)
+        for (long i = 0; i < total; ++i) {
+            if (failed.load(std::memory_order_relaxed)) continue;
+            const std::size_t slot = static_cast<std::size_t>(i);
+            try {
+                if (!geodesic) geodesic = std::make_unique<geodesic::ExactGeodesic>(fine.mesh);
+                const Propagation& p = propagations[slot];
+                const CoarseMesh& coarse = g.coarse();
+                geodesic::PropagationOptions propagation_options;
+                for (const HalfedgeHandle h : p.edges)
+                    propagation_options.stop_points.push_back(g.location(coarse.to_vertex_handle(h)));
+                geodesic->propagate({g.location(VertexHandle(p.source))}, propagation_options);
+                windows[slot] = geodesic->stats().windows_created;
+                for (std::size_t k = 0; k < p.edges.size(); ++k) {
+                    Polyline path = geodesic->shortest_path(propagation_options.stop_points[k]);
+                    if (path.empty())
+                        throw NumericalError("no geodesic found from coarse vertex " + std::to_string(p.source) +
+                                             " to coarse vertex " +
+                                             std::to_string(coarse.to_vertex_handle(p.edges[k]).idx()));
+                    paths[slot].push_back(std::move(path));
+                }
+            } catch (...) {
+                errors[slot] = std::current_exception();
+                failed = true;
+            }
+            if (options.progress) {
+#pragma omp critical(geotri_trace_progress)
+                {
+                    ++done;
+                    try {
+                        if (!errors[slot]) options.progress(done, static_cast<int>(total));
+                    } catch (...) {
+                        errors[slot] = std::current_exception();
+                        failed = true;
+                    }
+                }
+            }
+        }
+    }
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+
+    for (std::size_t i = 0; i < propagations.size(); ++i) {
+        for (std::size_t k = 0; k < propagations[i].edges.size(); ++k) {
+            result.polyline_points += paths[i][k].size();
+            g.set_path(propagations[i].edges[k], std::move(paths[i][k]));
+            result.longest_propagation =
+                std::max(result.longest_propagation, g.length(g.coarse().edge_handle(propagations[i].edges[k])));
+        }
+        result.windows_created += windows[i];
+    }
+    result.propagations = static_cast<int>(total);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace geotri

@@ -1,0 +1,390 @@
+// trace(): coarse vertices located on T, every edge the exact shortest geodesic between its ends (checked against
+// fresh full propagations), identical output for any thread count, and bad inputs refused.
+
+#include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
+#include <geotri/decimate.h>
+#include <geotri/gtri_io.h>
+#include <geotri/mesh_io.h>
+#include <geotri/trace.h>
+#include <geotri_test/procedural_meshes.h>
+#include <geotri_test/shared_data.h>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using geotri::GeodesicTriangulation;
+using geotri::geodesic::PointKind;
+using geotri::geodesic::SurfacePoint;
+using OpenMesh::VertexHandle;
+
+namespace {
+
+std::shared_ptr<const geotri::FineMesh> fine_of(const geotri::test::TriangleMesh& mesh, const std::string& name) {
+    return std::make_shared<const geotri::FineMesh>(geotri::make_fine_mesh({mesh.positions, mesh.triangles}, name));
+}
+
+/// The four fine vertices nearest to the directions of a regular tetrahedron (around `centre`), faces outward.
+geotri::MeshData tetrahedron_on(const geotri::geodesic::Mesh& fine, const Eigen::Vector3d& centre = {0, 0, 0},
+                                int first = 0, int last = -1) {
+    if (last < 0) last = fine.num_vertices();
+    const Eigen::Vector3d directions[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    geotri::MeshData coarse;
+    for (const Eigen::Vector3d& d : directions) {
+        int best = first;
+        for (int v = first; v < last; ++v)
+            if ((fine.position(v) - centre).normalized().dot(d.normalized()) >
+                (fine.position(best) - centre).normalized().dot(d.normalized()))
+                best = v;
+        coarse.positions.push_back(fine.position(best));
+    }
+    coarse.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+    for (auto& t : coarse.triangles) {
+        const Eigen::Vector3d a = coarse.positions[t[0]] - centre;
+        const Eigen::Vector3d n = (coarse.positions[t[1]] - coarse.positions[t[0]])
+                                      .cross(coarse.positions[t[2]] - coarse.positions[t[0]]);
+        if (n.dot(a + coarse.positions[t[1]] + coarse.positions[t[2]] - 2 * centre) < 0) std::swap(t[1], t[2]);
+    }
+    return coarse;
+}
+
+/// A coarse torus on the fine torus(…, n_major, n_minor): every `step_major`-th ring, every `step_minor`-th vertex.
+geotri::MeshData coarse_torus(const geotri::geodesic::Mesh& fine, int n_major, int n_minor, int step_major,
+                              int step_minor) {
+    const int cm = n_major / step_major, cn = n_minor / step_minor;
+    geotri::MeshData coarse;
+    for (int i = 0; i < cm; ++i)
+        for (int j = 0; j < cn; ++j) coarse.positions.push_back(fine.position(i * step_major * n_minor + j * step_minor));
+    auto at = [&](int i, int j) { return (i % cm) * cn + (j % cn); };
+    for (int i = 0; i < cm; ++i)
+        for (int j = 0; j < cn; ++j) {
+            coarse.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            coarse.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    return coarse;
+}
+
+/// Every polyline runs exactly from its first end's location to its second's, and its length is the exact distance
+/// between them from a fresh full propagation (an independent run with no stop points, from the edge's other end
+/// when `from_other_end`). Checks the edges around `sources` (all vertices when empty).
+void expect_edges_are_shortest_geodesics(const GeodesicTriangulation& g, std::vector<int> sources = {}) {
+    const geotri::CoarseMesh& c = g.coarse();
+    if (sources.empty())
+        for (auto v : c.vertices()) sources.push_back(v.idx());
+    geotri::geodesic::ExactGeodesic fresh(g.fine().mesh);
+    for (const int s : sources) {
+        const VertexHandle v(s);
+        fresh.propagate({g.location(v)});
+        for (auto h : c.voh_range(v)) {
+            const geotri::Polyline path = g.path(h);
+            const std::string what = "edge " + std::to_string(c.edge_handle(h).idx()) + " from coarse vertex " +
+                                     std::to_string(s) + " to " + std::to_string(c.to_vertex_handle(h).idx());
+            ASSERT_GE(path.size(), 2u) << what;
+            EXPECT_EQ(path.front(), g.location(v)) << what;
+            EXPECT_EQ(path.back(), g.location(c.to_vertex_handle(h))) << what;
+            const double exact = fresh.distance(g.location(c.to_vertex_handle(h)));
+            const double length = g.length(c.edge_handle(h));
+            EXPECT_NEAR(length, exact, 1e-12 * exact) << what;
+            EXPECT_EQ(length, geotri::geodesic::path_length(g.fine().mesh, g.polyline(c.edge_handle(h)))) << what;
+        }
+    }
+}
+
+std::string gtri_text(const GeodesicTriangulation& g, const fs::path& path) {
+    geotri::write_gtri(path.string(), g);
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+class Trace : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / ("geotri_trace_" + std::string(info->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    /// T written to a file and loaded from it, so that G can be written as .gtri.
+    std::shared_ptr<const geotri::FineMesh> fine_file(const geotri::test::TriangleMesh& mesh, const std::string& name) {
+        const std::string path = (dir_ / name).string();
+        geotri::write_mesh(path, {mesh.positions, mesh.triangles});
+        return std::make_shared<const geotri::FineMesh>(geotri::load_fine_mesh(path));
+    }
+
+    fs::path dir_;
+};
+
+// ---- Procedural meshes -----------------------------------------------------------------------------------------
+
+TEST_F(Trace, tetrahedron_on_icosphere_gives_shortest_geodesics) {
+    const auto fine = fine_of(geotri::test::icosphere(3), "icosphere");
+    GeodesicTriangulation g(fine, geotri::make_coarse_mesh(tetrahedron_on(fine->mesh), "tetrahedron"));
+    const geotri::TraceResult r = geotri::trace(g);
+    EXPECT_EQ(r.largest_location_move, 0.0);
+    EXPECT_EQ(r.moved_vertices, 0);
+    EXPECT_GE(r.propagations, 2);  // a vertex cover of K4 needs three vertices at most, two at least
+    EXPECT_LE(r.propagations, 3);
+    for (auto v : g.coarse().vertices()) {
+        ASSERT_EQ(g.location(v).kind, PointKind::vertex);
+        const auto& p = g.coarse().point(v);
+        EXPECT_EQ(fine->mesh.position(g.location(v).vertex), Eigen::Vector3d(p[0], p[1], p[2]));
+    }
+    expect_edges_are_shortest_geodesics(g);
+}
+
+TEST_F(Trace, coarse_torus_gives_shortest_geodesics) {
+    const auto fine = fine_of(geotri::test::torus(3.0, 1.0, 48, 24), "torus");
+    GeodesicTriangulation g(fine, geotri::make_coarse_mesh(coarse_torus(fine->mesh, 48, 24, 8, 6), "coarse torus"));
+    const geotri::TraceResult r = geotri::trace(g);
+    EXPECT_LT(r.propagations, static_cast<int>(g.coarse().n_vertices()));
+    expect_edges_are_shortest_geodesics(g);
+}
+
+TEST_F(Trace, output_is_identical_for_any_thread_count) {
+    const auto fine = fine_file(geotri::test::torus(3.0, 1.0, 48, 24), "torus.off");
+    const geotri::CoarseMesh coarse = geotri::make_coarse_mesh(coarse_torus(fine->mesh, 48, 24, 6, 4), "coarse");
+    std::vector<std::string> files;
+    for (const int threads : {1, 2, 4}) {
+        GeodesicTriangulation g(fine, coarse);
+        geotri::TraceOptions options;
+        options.threads = threads;
+        geotri::trace(g, options);
+        files.push_back(gtri_text(g, dir_ / ("t" + std::to_string(threads) + ".gtri")));
+    }
+    EXPECT_EQ(files[0], files[1]);
+    EXPECT_EQ(files[0], files[2]);
+}
+
+TEST_F(Trace, vertices_off_the_surface_move_to_the_closest_point) {
+    const auto fine = fine_of(geotri::test::icosphere(2), "icosphere");
+    const geotri::geodesic::Mesh& m = fine->mesh;
+    geotri::MeshData coarse = tetrahedron_on(m);
+    // 0: radially outside a fine vertex, whose closest point on this convex polyhedron is that vertex.
+    // 1: outside the centroid of a face, along its normal: the closest point is that centroid.
+    // 2: inside the sphere, at an arbitrary point. 3: stays on a fine vertex.
+    const Eigen::Vector3d vertex0 = coarse.positions[0];
+    coarse.positions[0] = 1.2 * vertex0;
+    int face = 0;
+    for (int f = 0; f < m.num_faces(); ++f) {
+        const auto& t = m.triangle(f);
+        const Eigen::Vector3d centroid = (m.position(t[0]) + m.position(t[1]) + m.position(t[2])) / 3.0;
+        if (centroid.normalized().dot(coarse.positions[1].normalized()) >
+            ((m.position(m.triangle(face)[0]) + m.position(m.triangle(face)[1]) + m.position(m.triangle(face)[2])) / 3.0)
+                .normalized()
+                .dot(coarse.positions[1].normalized()))
+            face = f;
+    }
+    const auto& t = m.triangle(face);
+    const Eigen::Vector3d centroid = (m.position(t[0]) + m.position(t[1]) + m.position(t[2])) / 3.0;
+    const Eigen::Vector3d normal = (m.position(t[1]) - m.position(t[0])).cross(m.position(t[2]) - m.position(t[0])).normalized();
+    coarse.positions[1] = centroid + 0.05 * normal;
+    coarse.positions[2] = 0.8 * coarse.positions[2] + Eigen::Vector3d(0.01, 0.02, -0.03);
+    const std::vector<Eigen::Vector3d> wanted = coarse.positions;
+
+    GeodesicTriangulation g(fine, geotri::make_coarse_mesh(coarse, "tetrahedron"));
+    const geotri::TraceResult r = geotri::trace(g);
+    EXPECT_EQ(r.moved_vertices, 3);
+
+    const SurfacePoint& l0 = g.location(VertexHandle(0));
+    ASSERT_EQ(l0.kind, PointKind::vertex);
+    EXPECT_EQ(m.position(l0.vertex), vertex0);
+    const SurfacePoint& l1 = g.location(VertexHandle(1));
+    ASSERT_EQ(l1.kind, PointKind::face);
+    EXPECT_EQ(l1.face, face);
+    for (double b : l1.bary) EXPECT_NEAR(b, 1.0 / 3.0, 1e-12);
+    EXPECT_EQ(g.location(VertexHandle(3)).kind, PointKind::vertex);
+
+    // Oracle for "closest": no point of a dense barycentric sampling of any face is nearer than the location.
+    double largest = 0.0;
+    for (int v = 0; v < 3; ++v) {
+        const Eigen::Vector3d located = m.point(g.location(VertexHandle(v)));
+        const double d = (located - wanted[static_cast<std::size_t>(v)]).norm();
+        largest = std::max(largest, d);
+        const auto& p = g.coarse().point(VertexHandle(v));
+        EXPECT_EQ(Eigen::Vector3d(p[0], p[1], p[2]), located) << "the coarse point follows its location";
+        constexpr int k = 12;
+        for (int f = 0; f < m.num_faces(); ++f) {
+            const auto& ft = m.triangle(f);
+            for (int i = 0; i <= k; ++i)
+                for (int j = 0; i + j <= k; ++j) {
+                    const Eigen::Vector3d q = (i * m.position(ft[0]) + j * m.position(ft[1]) +
+                                               (k - i - j) * m.position(ft[2])) / k;
+                    ASSERT_GE((q - wanted[static_cast<std::size_t>(v)]).norm(), d - 1e-12)
+                        << "coarse vertex " << v << ": face " << f << " has a nearer point";
+                }
+        }
+    }
+    EXPECT_NEAR(r.largest_location_move, largest, 1e-15);
+    EXPECT_GE(r.largest_move_vertex, 0);
+    EXPECT_LE(r.largest_move_vertex, 2);
+    expect_edges_are_shortest_geodesics(g);
+}
+
+TEST_F(Trace, two_components_each_get_their_own) {
+    const auto a = geotri::test::icosphere(2);
+    const auto union_mesh = geotri::test::disjoint_union(a, a, {5, 0, 0});
+    const auto fine = fine_of(union_mesh, "two spheres");
+    const int n = static_cast<int>(a.positions.size());
+    geotri::MeshData first = tetrahedron_on(fine->mesh, {0, 0, 0}, 0, n);
+    const geotri::MeshData second = tetrahedron_on(fine->mesh, {5, 0, 0}, n, 2 * n);
+    for (const auto& p : second.positions) first.positions.push_back(p);
+    for (const auto& t : second.triangles) first.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+    GeodesicTriangulation g(fine, geotri::make_coarse_mesh(first, "two tetrahedra"));
+    geotri::trace(g);
+    expect_edges_are_shortest_geodesics(g);
+
+    // Both tetrahedra on the first sphere: refused.
+    geotri::MeshData same = tetrahedron_on(fine->mesh, {0, 0, 0}, 0, n);
+    geotri::MeshData rotated = same;
+    for (auto& p : rotated.positions) p = Eigen::Vector3d(-p.x(), -p.y(), p.z());
+    for (const auto& p : rotated.positions) same.positions.push_back(p);
+    for (const auto& t : rotated.triangles) same.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+    GeodesicTriangulation both_on_one(fine, geotri::make_coarse_mesh(same, "coarse"));
+    try {
+        geotri::trace(both_on_one);
+        ADD_FAILURE() << "no error";
+    } catch (const geotri::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("same component of the fine mesh"), std::string::npos) << e.what();
+    }
+
+    // One tetrahedron with a vertex on each sphere: refused.
+    geotri::MeshData straddling = tetrahedron_on(fine->mesh, {0, 0, 0}, 0, n);
+    straddling.positions[3] = second.positions[3];
+    GeodesicTriangulation across(fine, geotri::make_coarse_mesh(straddling, "coarse"));
+    try {
+        geotri::trace(across);
+        ADD_FAILURE() << "no error";
+    } catch (const geotri::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("different components of the fine mesh"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(Trace, two_vertices_on_one_point_are_refused) {
+    const auto fine = fine_of(geotri::test::icosphere(2), "icosphere");
+    geotri::MeshData coarse = tetrahedron_on(fine->mesh);
+    coarse.positions[3] = coarse.positions[2];
+    GeodesicTriangulation g(fine, geotri::make_coarse_mesh(coarse, "coarse"));
+    EXPECT_THROW(geotri::trace(g), geotri::InvalidInput);
+}
+
+TEST_F(Trace, progress_is_reported_and_its_exceptions_come_out) {
+    const auto fine = fine_of(geotri::test::torus(3.0, 1.0, 24, 12), "torus");
+    const geotri::CoarseMesh coarse = geotri::make_coarse_mesh(coarse_torus(fine->mesh, 24, 12, 4, 3), "coarse");
+    GeodesicTriangulation g(fine, coarse);
+    std::vector<std::pair<int, int>> calls;
+    geotri::TraceOptions options;
+    options.threads = 2;
+    options.progress = [&calls](int done, int total) { calls.emplace_back(done, total); };
+    const geotri::TraceResult r = geotri::trace(g, options);
+    ASSERT_EQ(calls.size(), static_cast<std::size_t>(r.propagations));
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+        EXPECT_EQ(calls[i].first, static_cast<int>(i) + 1);
+        EXPECT_EQ(calls[i].second, r.propagations);
+    }
+    GeodesicTriangulation h(fine, coarse);
+    options.progress = [](int done, int) {
+        if (done == 2) throw std::runtime_error("stop here");
+    };
+    EXPECT_THROW(geotri::trace(h, options), std::runtime_error);
+}
+
+TEST(CoarseMesh, broken_coarse_meshes_are_refused) {
+    geotri::MeshData tetra;
+    tetra.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    EXPECT_EQ(geotri::make_coarse_mesh(tetra, "tetra").n_edges(), 6u);
+
+    geotri::MeshData open = tetra;
+    open.triangles.pop_back();
+    EXPECT_THROW(geotri::make_coarse_mesh(open, "open"), geotri::TopologyError);
+    geotri::MeshData flipped = tetra;
+    std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+    EXPECT_THROW(geotri::make_coarse_mesh(flipped, "flipped"), geotri::TopologyError);
+    geotri::MeshData out_of_range = tetra;
+    out_of_range.triangles[0][0] = 4;
+    EXPECT_THROW(geotri::make_coarse_mesh(out_of_range, "range"), geotri::InvalidInput);
+    geotri::MeshData isolated = tetra;
+    isolated.positions.emplace_back(5, 5, 5);
+    EXPECT_THROW(geotri::make_coarse_mesh(isolated, "isolated"), geotri::TopologyError);
+    // Two tetrahedra sharing vertex 0: closed and edge-manifold, but vertex 0 has two fans.
+    geotri::MeshData pinched = tetra;
+    for (int i = 0; i < 3; ++i) pinched.positions.emplace_back(-1.0 - i, -1, -1);
+    pinched.triangles.push_back({0, 5, 4});
+    pinched.triangles.push_back({0, 4, 6});
+    pinched.triangles.push_back({0, 6, 5});
+    pinched.triangles.push_back({4, 5, 6});
+    try {
+        geotri::make_coarse_mesh(pinched, "pinched");
+        ADD_FAILURE() << "no error";
+    } catch (const geotri::TopologyError& e) {
+        EXPECT_NE(std::string(e.what()).find("pinched: coarse vertex 0 is non-manifold"), std::string::npos) << e.what();
+    }
+}
+
+// ---- Real meshes -----------------------------------------------------------------------------------------------
+
+/// Decimates `path` to about `faces` faces, traces with 1 and 2 threads, and checks the edges around a sample of the
+/// coarse vertices (a full propagation each) and the thread-count independence.
+void trace_real_mesh(const fs::path& dir, const std::string& path, std::size_t faces, int sampled_sources) {
+    auto fine = std::make_shared<const geotri::FineMesh>(geotri::load_fine_mesh(path));
+    geotri::DecimateOptions options;
+    options.target_faces = faces;
+    const geotri::DecimateResult decimated = geotri::decimate(*fine, options);
+    const geotri::CoarseMesh coarse = geotri::make_coarse_mesh(decimated.coarse, "decimated");
+    std::string first_file;
+    for (const int threads : {1, 2}) {
+        GeodesicTriangulation g(fine, coarse);
+        geotri::TraceOptions trace_options;
+        trace_options.threads = threads;
+        const geotri::TraceResult r = geotri::trace(g, trace_options);
+        EXPECT_EQ(r.moved_vertices, 0);
+        std::cout << "[ trace    ] " << path << ": " << coarse.n_faces() << " coarse faces, " << r.propagations
+                  << " propagations, " << r.seconds << " s on " << threads << " thread(s)\n";
+        const std::string text = gtri_text(g, dir / ("t" + std::to_string(threads) + ".gtri"));
+        if (threads == 1) {
+            first_file = text;
+            std::vector<int> sources;
+            const int n = static_cast<int>(coarse.n_vertices());
+            for (int i = 0; i < std::min(n, sampled_sources); ++i) sources.push_back(i * n / std::min(n, sampled_sources));
+            expect_edges_are_shortest_geodesics(g, sources);
+        } else {
+            EXPECT_EQ(text, first_file) << "2 threads differ from 1";
+        }
+    }
+}
+
+TEST_F(Trace, bundled_bob) {
+    trace_real_mesh(dir_, std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply", 60, 1000);
+}
+
+TEST_F(Trace, shared_vertebra) {
+    if (geotri::test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at " << geotri::test::configured_shared_data_dir()
+                     << " (set GEOTRI_SHARED_DATA)";
+    trace_real_mesh(dir_, geotri::test::shared_mesh("anatomy/lumbar_vertebra_mean_2nd.ply").path, 320, 8);
+}
+
+TEST_F(Trace, shared_spine_four_components) {
+    if (geotri::test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at " << geotri::test::configured_shared_data_dir()
+                     << " (set GEOTRI_SHARED_DATA)";
+    trace_real_mesh(dir_, geotri::test::shared_mesh("anatomy/lumbar_spine_L2-L5_mean.ply").path, 1232, 4);
+}
+
+}  // namespace
