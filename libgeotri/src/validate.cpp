@@ -1,0 +1,652 @@
+#include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
+#include <geotri/overlay.h>
+#include <geotri/tangent_angles.h>
+#include <geotri/validate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <string>
+#include <utility>
+
+namespace geotri {
+
+using geodesic::Mesh;
+using geodesic::PointKind;
+
+namespace {
+
+constexpr double k_pi = 3.14159265358979323846;
+// × size(T): how far off straight a polyline point may lie. libgeodesic snaps a crossing within 1e-12·size of a
+// vertex onto it; traced paths on the shared meshes are otherwise straight to 5e-17·size.
+constexpr double k_straight_tolerance = 2e-12;
+constexpr double k_length_tolerance = 1e-12;    // relative
+constexpr double k_min_corner = 1e-12;          // rad
+constexpr double k_meet_tolerance = 1e-12;      // × the local fine edge length
+constexpr double k_area_tolerance = 1e-9;       // relative
+
+std::string degrees(double radians) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g°", radians * 180.0 / k_pi);
+    return buffer;
+}
+
+std::string number(double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", x);
+    return buffer;
+}
+
+/// The one representation of a point (Mesh::canonical), with an edge point's vertices in increasing order, so that
+/// equal points compare equal.
+SurfacePoint normalised(const Mesh& mesh, const SurfacePoint& p) {
+    SurfacePoint c = mesh.canonical(p);
+    if (c.kind == PointKind::edge && c.edge_v0 > c.edge_v1) {
+        std::swap(c.edge_v0, c.edge_v1);
+        c.t = 1.0 - c.t;
+    }
+    return c;
+}
+
+/// The key of the fine edge {a, b}: the smaller of its halfedges.
+int edge_key(const Mesh& mesh, int a, int b) {
+    const int h = mesh.find_halfedge(a, b), g = mesh.find_halfedge(b, a);
+    if (h < 0) return g;
+    if (g < 0) return h;
+    return std::min(h, g);
+}
+
+double point_segment_distance(const Eigen::Vector2d& x, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const Eigen::Vector2d d = b - a;
+    const double dd = d.squaredNorm();
+    const double s = dd > 0.0 ? std::clamp((x - a).dot(d) / dd, 0.0, 1.0) : 0.0;
+    return (a + s * d - x).norm();
+}
+
+double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+double segment_distance(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0,
+                        const Eigen::Vector2d& b1) {
+    const double o1 = cross(a1 - a0, b0 - a0), o2 = cross(a1 - a0, b1 - a0);
+    const double o3 = cross(b1 - b0, a0 - b0), o4 = cross(b1 - b0, a1 - b0);
+    if (((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)))
+        return 0.0;
+    return std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
+                     point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
+}
+
+/// A point that takes part in condition 3: point `index` of the polyline of coarse edge `feature` (feature < number
+/// of edges), or the location of coarse vertex `feature - number of edges` (index 0).
+struct Item {
+    int feature;
+    int index;
+};
+
+struct EdgePoint {
+    int key;
+    double t;
+    Item item;
+};
+
+struct EdgeInterval {
+    int key;
+    double t0, t1;
+    int feature;
+    int segment;
+};
+
+struct FaceSegment {
+    int face;
+    Item end[2];
+    Eigen::Vector2d x[2];
+    int segment;  ///< -1 for a coarse vertex (a single point)
+};
+
+class Validator {
+public:
+    Validator(const GeodesicTriangulation& g, ValidationReport& report)
+        : g_(g), mesh_(g.fine().mesh), coarse_(g.coarse()), report_(report) {}
+
+    void run(const ValidationOptions& options);
+
+private:
+    void prepare();
+    void check_geodesics();
+    void check_polyline(int e);
+    void check_corners();
+    void check_crossings();
+    void check_patches();
+    void summarise();
+
+    void add(Violation v) {
+        ++report_.violation_count[static_cast<std::size_t>(v.condition - 1)];
+        report_.violations.push_back(std::move(v));
+    }
+    std::string edge_name(int e) const {
+        return "coarse edge " + std::to_string(e) + " (" + std::to_string(ends_[e][0]) + "-" +
+               std::to_string(ends_[e][1]) + ")";
+    }
+    int num_edges() const { return static_cast<int>(paths_.size()); }
+    bool is_polyline(const Item& i) const { return i.feature < num_edges(); }
+    const SurfacePoint& point_of(const Item& i) const {
+        return is_polyline(i) ? paths_[i.feature][i.index] : locations_[i.feature - num_edges()];
+    }
+    /// The coarse vertex at this point when it is an end of its polyline or a coarse vertex, else -1.
+    int end_vertex(const Item& i) const {
+        if (!is_polyline(i)) return i.feature - num_edges();
+        if (i.index == 0) return ends_[i.feature][0];
+        if (i.index + 1 == static_cast<int>(paths_[i.feature].size())) return ends_[i.feature][1];
+        return -1;
+    }
+    bool allowed(const Item& a, const Item& b) const;
+    void meet(const Item& a, const Item& b, const std::string& where);
+    void add_point(const Item& item);
+
+    const GeodesicTriangulation& g_;
+    const Mesh& mesh_;
+    const CoarseMesh& coarse_;
+    ValidationReport& report_;
+
+    std::vector<Polyline> paths_;                ///< per coarse edge index, normalised (empty for a deleted edge)
+    std::vector<std::array<int, 2>> ends_;       ///< per coarse edge: from and to vertex of halfedge 0
+    std::vector<SurfacePoint> locations_;        ///< per coarse vertex, normalised
+    std::vector<unsigned char> path_ok_;         ///< per coarse edge: ends match and every segment shares a face
+    std::vector<double> corner_angles_;          ///< every coarse corner angle that could be measured
+
+    std::vector<std::pair<int, Item>> vertex_items_;
+    std::vector<EdgePoint> edge_points_;
+    std::vector<EdgeInterval> edge_intervals_;
+    std::vector<FaceSegment> face_segments_;
+    std::map<std::pair<int, int>, std::string> meetings_;
+};
+
+void Validator::run(const ValidationOptions& options) {
+    prepare();
+    check_geodesics();
+    check_corners();
+    check_crossings();
+    if (options.overlay) check_patches();
+    summarise();
+    report_.valid = std::all_of(report_.violation_count.begin(), report_.violation_count.end(),
+                                [](int c) { return c == 0; });
+}
+
+void Validator::prepare() {
+    locations_.assign(coarse_.n_vertices(), SurfacePoint::at_vertex(-1));
+    for (auto v : coarse_.vertices()) {
+        try {
+            locations_[v.idx()] = normalised(mesh_, g_.location(v));
+        } catch (const InvalidInput& e) {
+            throw InvalidInput("coarse vertex " + std::to_string(v.idx()) + ": location: " + e.what());
+        }
+    }
+    paths_.assign(coarse_.n_edges(), Polyline{});
+    ends_.assign(coarse_.n_edges(), {-1, -1});
+    path_ok_.assign(coarse_.n_edges(), 0);
+    for (auto e : coarse_.edges()) {
+        const auto h = coarse_.halfedge_handle(e, 0);
+        ends_[e.idx()] = {coarse_.from_vertex_handle(h).idx(), coarse_.to_vertex_handle(h).idx()};
+        const Polyline& raw = g_.polyline(e);
+        Polyline& path = paths_[e.idx()];
+        path.reserve(raw.size());
+        for (std::size_t i = 0; i < raw.size(); ++i) {
+            try {
+                path.push_back(normalised(mesh_, raw[i]));
+            } catch (const InvalidInput& ex) {
+                throw InvalidInput("coarse edge " + std::to_string(e.idx()) + ": point " + std::to_string(i) +
+                                   ": " + ex.what());
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Condition 1
+
+void Validator::check_geodesics() {
+    for (auto e : coarse_.edges()) check_polyline(e.idx());
+}
+
+void Validator::check_polyline(int e) {
+    const Polyline& path = paths_[e];
+    auto fail = [&](const std::string& why) {
+        Violation v;
+        v.condition = 1;
+        v.what = edge_name(e) + " " + why;
+        v.coarse_edges = {e};
+        v.coarse_vertices = {ends_[e][0], ends_[e][1]};
+        add(std::move(v));
+    };
+    if (path.size() < 2) {
+        fail(path.empty() ? "has no polyline" : "has a polyline of one point");
+        return;
+    }
+    if (path.front() != locations_[ends_[e][0]]) {
+        fail("does not start at the location of coarse vertex " + std::to_string(ends_[e][0]));
+        return;
+    }
+    if (path.back() != locations_[ends_[e][1]]) {
+        fail("does not end at the location of coarse vertex " + std::to_string(ends_[e][1]));
+        return;
+    }
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+        if (path[i] == path[i + 1]) {
+            fail("repeats point " + std::to_string(i));
+            return;
+        }
+        if (common_face(mesh_, path[i], path[i + 1]) < 0) {
+            fail("has points " + std::to_string(i) + " and " + std::to_string(i + 1) + " on no common fine face");
+            return;
+        }
+    }
+    path_ok_[e] = 1;
+
+    // Straight through every interior point: the point lies within `reach` of the straight line through its
+    // neighbours, unfolded on the side where the angle is π. With a bend of β and neighbours at distances a and b,
+    // the point is β·ab/(a+b) off that line, so the bend may be reach·(1/a + 1/b).
+    const double reach = k_straight_tolerance * mesh_.size();
+    std::vector<Eigen::Vector3d> x(path.size());
+    for (std::size_t i = 0; i < path.size(); ++i) x[i] = mesh_.point(path[i]);
+    for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+        const SurfacePoint& p = path[i];
+        const double theta = cone_angle(mesh_, p);
+        const double in = polar_angle(mesh_, p, path[i - 1]);
+        const double out = polar_angle(mesh_, p, path[i + 1]);
+        const double left = ccw_angle(in, out, theta);
+        const double right = theta - left;
+        const double a = (x[i] - x[i - 1]).norm(), b = (x[i + 1] - x[i]).norm();
+        const double slack = (a > 0.0 && b > 0.0) ? reach * (1.0 / a + 1.0 / b) : std::numeric_limits<double>::infinity();
+        const bool straight = std::abs(left - k_pi) <= slack || std::abs(right - k_pi) <= slack;
+        if (p.kind == PointKind::vertex) {
+            // Through a vertex: at least π on each side (a saddle), or straight on one side (a crossing that
+            // rounding put on the vertex).
+            if (!straight && std::min(left, right) < k_pi - slack) {
+                fail("bends at fine vertex " + std::to_string(p.vertex) + " (point " + std::to_string(i) +
+                     "): angles " + degrees(left) + " and " + degrees(right) + " on its sides, cone angle " +
+                     degrees(theta));
+                return;
+            }
+        } else if (!straight) {
+            fail("is not straight at point " + std::to_string(i) + " (" + geodesic::to_spec(p) + "): angle " +
+                 degrees(left) + " instead of 180°");
+            return;
+        }
+    }
+
+    const double length = geodesic::path_length(mesh_, path);
+    const double recorded = g_.length(OpenMesh::EdgeHandle(e));
+    if (!(std::abs(recorded - length) <= k_length_tolerance * length))
+        fail("records length " + number(recorded) + " but its polyline is " + number(length) + " long");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Condition 2
+
+void Validator::check_corners() {
+    for (auto c : coarse_.vertices()) {
+        const auto start = coarse_.halfedge_handle(c);
+        if (!start.is_valid()) continue;
+        std::vector<OpenMesh::HalfedgeHandle> out;
+        std::vector<double> angle;
+        bool measurable = true;
+        auto h = start;
+        do {
+            const int e = coarse_.edge_handle(h).idx();
+            if (!path_ok_[e]) {
+                measurable = false;
+                break;
+            }
+            const Polyline& path = paths_[e];
+            const bool forward = h == coarse_.halfedge_handle(coarse_.edge_handle(h), 0);
+            const SurfacePoint& p = forward ? path[0] : path[path.size() - 1];
+            const SurfacePoint& q = forward ? path[1] : path[path.size() - 2];
+            out.push_back(h);
+            angle.push_back(polar_angle(mesh_, p, q));
+            h = coarse_.ccw_rotated_halfedge_handle(h);
+        } while (h != start && out.size() <= coarse_.n_halfedges());
+        if (!measurable || out.empty()) continue;  // condition 1 already names the broken polyline
+
+        const double theta = cone_angle(mesh_, locations_[c.idx()]);
+        const std::size_t n = out.size();
+        double sum = 0.0;
+        int first_bad = -1;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double corner = ccw_angle(angle[i], angle[(i + 1) % n], theta);
+            corner_angles_.push_back(corner);
+            sum += corner;
+            if (corner <= k_min_corner && first_bad < 0) first_bad = static_cast<int>(i);
+        }
+        const long winding = std::lround(sum / theta);
+        if (first_bad < 0 && winding == 1) continue;
+
+        Violation v;
+        v.condition = 2;
+        v.coarse_vertices = {c.idx()};
+        const std::string name = "coarse vertex " + std::to_string(c.idx());
+        if (first_bad >= 0) {
+            const auto h0 = out[static_cast<std::size_t>(first_bad)];
+            const auto h1 = out[(static_cast<std::size_t>(first_bad) + 1) % n];
+            const int f = coarse_.face_handle(h0).idx();
+            v.what = name + ": the corner of coarse face " + std::to_string(f) + " between coarse edges " +
+                     std::to_string(coarse_.edge_handle(h0).idx()) + " and " +
+                     std::to_string(coarse_.edge_handle(h1).idx()) + " is not positive (geodesics in the wrong " +
+                     "order or overlapping)";
+            v.coarse_edges = {coarse_.edge_handle(h0).idx(), coarse_.edge_handle(h1).idx()};
+            if (f >= 0) v.coarse_faces = {f};
+            if (winding != 1) v.what += "; they wind " + std::to_string(winding) + " times around it";
+        } else {
+            v.what = name + ": its geodesics wind " + std::to_string(winding) + " times around it (corner angles " +
+                     "sum to " + degrees(sum) + ", cone angle " + degrees(theta) + ")";
+            for (const auto& hh : out) {
+                v.coarse_edges.push_back(coarse_.edge_handle(hh).idx());
+                if (coarse_.face_handle(hh).is_valid()) v.coarse_faces.push_back(coarse_.face_handle(hh).idx());
+            }
+        }
+        add(std::move(v));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Condition 3
+
+bool Validator::allowed(const Item& a, const Item& b) const {
+    if (a.feature == b.feature && a.index == b.index) return true;
+    const bool pa = is_polyline(a), pb = is_polyline(b);
+    if (!pa && !pb) return false;  // two coarse vertices at one point
+    if (pa && pb && a.feature == b.feature) return std::abs(a.index - b.index) == 1;  // consecutive points
+    const int va = end_vertex(a), vb = end_vertex(b);
+    return va >= 0 && va == vb;
+}
+
+void Validator::meet(const Item& a, const Item& b, const std::string& where) {
+    const auto key = std::minmax(a.feature, b.feature);
+    meetings_.emplace(std::make_pair(key.first, key.second), where);
+}
+
+void Validator::add_point(const Item& item) {
+    const SurfacePoint& p = point_of(item);
+    if (p.kind == PointKind::vertex) {
+        vertex_items_.emplace_back(p.vertex, item);
+        // Also on every fine edge at the vertex, so that a crossing a hair away from it is seen.
+        for (int h : mesh_.outgoing_halfedges(p.vertex)) {
+            const int w = mesh_.head(h);
+            edge_points_.push_back({edge_key(mesh_, p.vertex, w), p.vertex < w ? 0.0 : 1.0, item});
+        }
+    } else if (p.kind == PointKind::edge) {
+        edge_points_.push_back({edge_key(mesh_, p.edge_v0, p.edge_v1), p.t, item});
+    }
+}
+
+void Validator::check_crossings() {
+    const int ne = num_edges();
+    // Bucket every point and segment by the fine vertex, edge or face that holds it.
+    for (int e = 0; e < ne; ++e) {
+        if (!path_ok_[e]) continue;
+        const Polyline& path = paths_[e];
+        for (int i = 0; i < static_cast<int>(path.size()); ++i) add_point({e, i});
+        for (int i = 0; i + 1 < static_cast<int>(path.size()); ++i) {
+            const SurfacePoint& p = path[i];
+            const SurfacePoint& q = path[i + 1];
+            if (on_common_edge(mesh_, p, q)) {
+                int a, b;
+                if (p.kind == PointKind::edge) {
+                    a = p.edge_v0;
+                    b = p.edge_v1;
+                } else if (q.kind == PointKind::edge) {
+                    a = q.edge_v0;
+                    b = q.edge_v1;
+                } else {
+                    a = std::min(p.vertex, q.vertex);
+                    b = std::max(p.vertex, q.vertex);
+                }
+                auto param = [a](const SurfacePoint& s) {
+                    return s.kind == PointKind::vertex ? (s.vertex == a ? 0.0 : 1.0) : s.t;
+                };
+                const double tp = param(p), tq = param(q);
+                edge_intervals_.push_back({edge_key(mesh_, a, b), std::min(tp, tq), std::max(tp, tq), e, i});
+            } else {
+                const int f = common_face(mesh_, p, q);
+                face_segments_.push_back({f,
+                                          {Item{e, i}, Item{e, i + 1}},
+                                          {halfedge_coordinates(mesh_, 3 * f, p), halfedge_coordinates(mesh_, 3 * f, q)},
+                                          i});
+            }
+        }
+    }
+    for (auto c : coarse_.vertices()) {
+        const Item item{ne + c.idx(), 0};
+        const SurfacePoint& p = locations_[c.idx()];
+        if (p.kind == PointKind::face) {
+            const Eigen::Vector2d x = halfedge_coordinates(mesh_, 3 * p.face, p);
+            face_segments_.push_back({p.face, {item, item}, {x, x}, -1});
+        } else {
+            add_point(item);
+        }
+    }
+
+    // Points on one fine vertex.
+    std::sort(vertex_items_.begin(), vertex_items_.end(), [](const auto& x, const auto& y) {
+        return x.first < y.first || (x.first == y.first && x.second.feature < y.second.feature);
+    });
+    for (std::size_t i = 0; i < vertex_items_.size();) {
+        std::size_t j = i;
+        while (j < vertex_items_.size() && vertex_items_[j].first == vertex_items_[i].first) ++j;
+        for (std::size_t a = i; a < j; ++a)
+            for (std::size_t b = a + 1; b < j; ++b)
+                if (!allowed(vertex_items_[a].second, vertex_items_[b].second))
+                    meet(vertex_items_[a].second, vertex_items_[b].second,
+                         "at fine vertex " + std::to_string(vertex_items_[i].first));
+        i = j;
+    }
+
+    // Points and segments on one fine edge: coincident points, points inside a segment along the edge, and
+    // segments that overlap along it.
+    std::sort(edge_points_.begin(), edge_points_.end(),
+              [](const EdgePoint& x, const EdgePoint& y) { return x.key < y.key || (x.key == y.key && x.t < y.t); });
+    std::sort(edge_intervals_.begin(), edge_intervals_.end(),
+              [](const EdgeInterval& x, const EdgeInterval& y) { return x.key < y.key || (x.key == y.key && x.t0 < y.t0); });
+    auto edge_where = [&](int key) {
+        return "on fine edge (" + std::to_string(mesh_.tail(key)) + "," + std::to_string(mesh_.head(key)) + ")";
+    };
+    for (std::size_t i = 0; i < edge_points_.size(); ++i) {
+        for (std::size_t j = i + 1; j < edge_points_.size() && edge_points_[j].key == edge_points_[i].key &&
+                                    edge_points_[j].t - edge_points_[i].t <= k_meet_tolerance;
+             ++j) {
+            if (!allowed(edge_points_[i].item, edge_points_[j].item))
+                meet(edge_points_[i].item, edge_points_[j].item, edge_where(edge_points_[i].key));
+        }
+    }
+    for (std::size_t i = 0; i < edge_intervals_.size(); ++i) {
+        const EdgeInterval& s = edge_intervals_[i];
+        const Item item{s.feature, s.segment};
+        auto first = std::lower_bound(edge_points_.begin(), edge_points_.end(), s,
+                                      [](const EdgePoint& p, const EdgeInterval& x) {
+                                          return p.key < x.key || (p.key == x.key && p.t <= x.t0 + k_meet_tolerance);
+                                      });
+        for (auto p = first; p != edge_points_.end() && p->key == s.key && p->t < s.t1 - k_meet_tolerance; ++p)
+            meet(item, p->item, edge_where(s.key));
+        for (std::size_t j = i + 1; j < edge_intervals_.size() && edge_intervals_[j].key == s.key; ++j) {
+            const EdgeInterval& r = edge_intervals_[j];
+            if (std::min(s.t1, r.t1) - std::max(s.t0, r.t0) > k_meet_tolerance)
+                meet(item, {r.feature, r.segment}, edge_where(s.key));
+        }
+    }
+
+    // Segments inside one fine face.
+    std::sort(face_segments_.begin(), face_segments_.end(),
+              [](const FaceSegment& x, const FaceSegment& y) { return x.face < y.face; });
+    for (std::size_t i = 0; i < face_segments_.size();) {
+        std::size_t j = i;
+        while (j < face_segments_.size() && face_segments_[j].face == face_segments_[i].face) ++j;
+        if (j - i > 1) {
+            const int f = face_segments_[i].face;
+            const double tolerance =
+                k_meet_tolerance * std::max({mesh_.length(3 * f), mesh_.length(3 * f + 1), mesh_.length(3 * f + 2)});
+            const std::string where = "in fine face " + std::to_string(f);
+            for (std::size_t a = i; a < j; ++a) {
+                for (std::size_t b = a + 1; b < j; ++b) {
+                    const FaceSegment& s = face_segments_[a];
+                    const FaceSegment& r = face_segments_[b];
+                    if (s.end[0].feature == r.end[0].feature && s.segment >= 0 && std::abs(s.segment - r.segment) <= 1)
+                        continue;  // one polyline's consecutive segments
+                    int shared_s = -1, shared_r = -1;
+                    for (int u = 0; u < 2 && shared_s < 0; ++u)
+                        for (int w = 0; w < 2 && shared_s < 0; ++w)
+                            if (point_of(s.end[u]) == point_of(r.end[w])) {
+                                shared_s = u;
+                                shared_r = w;
+                            }
+                    if (shared_s >= 0) {
+                        if (!allowed(s.end[shared_s], r.end[shared_r])) {
+                            meet(s.end[shared_s], r.end[shared_r], where);
+                        } else if (s.segment >= 0 && r.segment >= 0) {
+                            // Two geodesics from a common end overlap when one's far end lies on the other.
+                            const Eigen::Vector2d& xs = s.x[1 - shared_s];
+                            const Eigen::Vector2d& xr = r.x[1 - shared_r];
+                            if (point_segment_distance(xs, r.x[0], r.x[1]) <= tolerance ||
+                                point_segment_distance(xr, s.x[0], s.x[1]) <= tolerance)
+                                meet(s.end[0], r.end[0], where);
+                        }
+                        continue;
+                    }
+                    if (segment_distance(s.x[0], s.x[1], r.x[0], r.x[1]) <= tolerance) meet(s.end[0], r.end[0], where);
+                }
+            }
+        }
+        i = j;
+    }
+
+    for (const auto& [pair, where] : meetings_) {
+        Violation v;
+        v.condition = 3;
+        const auto [a, b] = pair;
+        if (a < ne && b < ne) {
+            v.what = a == b ? edge_name(a) + " meets itself " + where
+                            : edge_name(a) + " and " + edge_name(b) + " meet " + where;
+            v.coarse_edges = a == b ? std::vector<int>{a} : std::vector<int>{a, b};
+            v.coarse_vertices = {ends_[a][0], ends_[a][1]};
+            if (a != b) v.coarse_vertices.insert(v.coarse_vertices.end(), {ends_[b][0], ends_[b][1]});
+        } else if (a < ne) {
+            v.what = edge_name(a) + " passes through coarse vertex " + std::to_string(b - ne) + " " + where;
+            v.coarse_edges = {a};
+            v.coarse_vertices = {b - ne, ends_[a][0], ends_[a][1]};
+        } else {
+            v.what = "coarse vertices " + std::to_string(a - ne) + " and " + std::to_string(b - ne) +
+                     " are at the same point " + where;
+            v.coarse_vertices = {a - ne, b - ne};
+        }
+        std::sort(v.coarse_vertices.begin(), v.coarse_vertices.end());
+        v.coarse_vertices.erase(std::unique(v.coarse_vertices.begin(), v.coarse_vertices.end()),
+                                v.coarse_vertices.end());
+        add(std::move(v));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Condition 4
+
+void Validator::check_patches() {
+    report_.overlay_checked = true;
+    Overlay overlay;
+    try {
+        overlay = build_overlay(g_);
+    } catch (const Error& e) {
+        Violation v;
+        v.condition = 4;
+        v.what = std::string("the overlay could not be built: ") + e.what();
+        add(std::move(v));
+        return;
+    }
+    report_.patch_area = std::accumulate(overlay.patch_area.begin(), overlay.patch_area.end(), 0.0);
+    for (int f : overlay.bad_patches) {
+        Violation v;
+        v.condition = 4;
+        v.what = "the patch of coarse face " + std::to_string(f) +
+                 " is not a disk bounded by the face's three polylines";
+        v.coarse_faces = {f};
+        const auto fh = OpenMesh::FaceHandle(f);
+        if (f >= 0 && static_cast<std::size_t>(f) < coarse_.n_faces()) {
+            for (auto v_ : coarse_.fv_range(fh)) v.coarse_vertices.push_back(v_.idx());
+            for (auto e : coarse_.fe_range(fh)) v.coarse_edges.push_back(e.idx());
+        }
+        add(std::move(v));
+    }
+    const double fine_area = mesh_.total_area();
+    if (!(std::abs(report_.patch_area - fine_area) <= k_area_tolerance * fine_area)) {
+        Violation v;
+        v.condition = 4;
+        v.what = "the patches cover an area of " + number(report_.patch_area) + ", but T's area is " +
+                 number(fine_area);
+        add(std::move(v));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Summary
+
+void Validator::summarise() {
+    report_.vertices = static_cast<int>(coarse_.n_vertices());
+    report_.edges = static_cast<int>(coarse_.n_edges());
+    report_.faces = static_cast<int>(coarse_.n_faces());
+    report_.fine_area = mesh_.total_area();
+
+    // Components and genus from the Euler characteristic of each coarse component.
+    std::vector<int> parent(coarse_.n_vertices());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](int x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    for (auto e : coarse_.edges()) parent[find(ends_[e.idx()][0])] = find(ends_[e.idx()][1]);
+    std::vector<long> chi(coarse_.n_vertices(), 0);
+    std::vector<unsigned char> used(coarse_.n_vertices(), 0);
+    for (auto v : coarse_.vertices()) {
+        ++chi[find(v.idx())];
+        used[find(v.idx())] = 1;
+    }
+    for (auto e : coarse_.edges()) --chi[find(ends_[e.idx()][0])];
+    for (auto f : coarse_.faces()) ++chi[find(coarse_.to_vertex_handle(coarse_.halfedge_handle(f)).idx())];
+    report_.components = 0;
+    report_.genus = 0;
+    for (std::size_t r = 0; r < used.size(); ++r) {
+        if (!used[r]) continue;
+        ++report_.components;
+        report_.genus += static_cast<int>((2 - chi[r]) / 2);
+    }
+
+    if (!corner_angles_.empty()) {
+        const auto [lo, hi] = std::minmax_element(corner_angles_.begin(), corner_angles_.end());
+        report_.min_corner_angle_deg = *lo * 180.0 / k_pi;
+        report_.max_corner_angle_deg = *hi * 180.0 / k_pi;
+    }
+    double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    int n = 0;
+    for (auto e : coarse_.edges()) {
+        const double l = g_.length(e);
+        sum += l;
+        lo = std::min(lo, l);
+        hi = std::max(hi, l);
+        ++n;
+    }
+    if (n > 0) {
+        report_.min_edge_length = lo;
+        report_.max_edge_length = hi;
+        report_.mean_edge_length = sum / n;
+    }
+}
+
+}  // namespace
+
+ValidationReport validate(const GeodesicTriangulation& g, const ValidationOptions& options) {
+    ValidationReport report;
+    Validator(g, report).run(options);
+    return report;
+}
+
+ValidationReport validate(const GeodesicTriangulation& g) { return validate(g, ValidationOptions{}); }
+
+}  // namespace geotri
