@@ -1,0 +1,843 @@
+#include <geodesic/errors.h>
+#include <geotri/overlay.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+#include <utility>
+
+namespace geotri {
+
+double Overlay::total_patch_area() const { return std::accumulate(patch_area.begin(), patch_area.end(), 0.0); }
+
+namespace {
+
+using geodesic::Mesh;
+using geodesic::PointKind;
+
+constexpr double k_pi = 3.14159265358979323846;
+
+std::uint64_t bits_of(double x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t x) {
+    x *= 0x9e3779b97f4a7c15ULL;
+    x ^= x >> 29;
+    return (h ^ x) * 0xbf58476d1ce4e5b9ULL + 0x94d049bb133111ebULL;
+}
+
+std::uint64_t undirected_key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+class DisjointSets {
+public:
+    explicit DisjointSets(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+    int find(int x) {
+        while (parent_[x] != x) {
+            parent_[x] = parent_[parent_[x]];
+            x = parent_[x];
+        }
+        return x;
+    }
+    void unite(int a, int b) {
+        a = find(a);
+        b = find(b);
+        // The smaller root wins, so that roots (and the region numbering built on them) do not depend on order.
+        if (a < b) parent_[b] = a;
+        else if (b < a) parent_[a] = b;
+    }
+
+private:
+    std::vector<int> parent_;
+};
+
+/// Exact identity of an edge or face point: the fine element and the bit patterns of its parameters.
+struct PointKey {
+    int kind = 0;
+    int element = 0;
+    std::uint64_t x = 0, y = 0, z = 0;
+    bool operator==(const PointKey& o) const {
+        return kind == o.kind && element == o.element && x == o.x && y == o.y && z == o.z;
+    }
+};
+struct PointKeyHash {
+    std::size_t operator()(const PointKey& k) const {
+        std::uint64_t h = mix(static_cast<std::uint64_t>(k.kind), static_cast<std::uint64_t>(k.element));
+        return static_cast<std::size_t>(mix(mix(mix(h, k.x), k.y), k.z));
+    }
+};
+
+/// One representative halfedge per fine edge, so that both faces of an edge name it the same way.
+int edge_representative(const Mesh& mesh, int h) {
+    const int t = mesh.twin(h);
+    return t >= 0 ? std::min(h, t) : h;
+}
+
+/// The overlay's vertices: T's vertices, then every edge and face point that a polyline or a location uses, each
+/// created once, so that the two faces of a crossed edge share it and the overlay is watertight.
+class PointTable {
+public:
+    struct EdgeSlot {
+        int v0 = -1, v1 = -1;                        // the fine edge, v0 < v1; points are (v0, v1, t)
+        std::vector<std::pair<double, int>> points;  // (t, overlay vertex), sorted by t once finish() ran
+    };
+
+    PointTable(const Mesh& mesh, Overlay& out) : mesh_(mesh), out_(out) {
+        out_.positions = mesh.positions();
+        out_.points.clear();
+        out_.points.reserve(mesh.num_vertices());
+        for (int v = 0; v < mesh.num_vertices(); ++v) out_.points.push_back(SurfacePoint::at_vertex(v));
+    }
+
+    /// The overlay vertex at p, created on first use; -1 when p does not refer to T.
+    int id_of(const SurfacePoint& raw) {
+        SurfacePoint p;
+        try {
+            p = mesh_.canonical(raw);
+        } catch (const Error&) {
+            return -1;
+        }
+        if (p.kind == PointKind::vertex) return p.vertex;
+        PointKey key;
+        int slot = -1;
+        if (p.kind == PointKind::edge) {
+            if (p.edge_v0 > p.edge_v1) {
+                std::swap(p.edge_v0, p.edge_v1);
+                p.t = 1.0 - p.t;
+            }
+            int h = mesh_.find_halfedge(p.edge_v0, p.edge_v1);
+            if (h < 0) h = mesh_.find_halfedge(p.edge_v1, p.edge_v0);
+            if (h < 0) return -1;
+            const int rep = edge_representative(mesh_, h);
+            key = {1, rep, bits_of(p.t), 0, 0};
+            auto [it, inserted] = slot_of_rep_.emplace(rep, static_cast<int>(edges.size()));
+            if (inserted) edges.push_back({p.edge_v0, p.edge_v1, {}});
+            slot = it->second;
+        } else {
+            key = {2, p.face, bits_of(p.bary[0]), bits_of(p.bary[1]), bits_of(p.bary[2])};
+        }
+        auto [it, inserted] = ids_.emplace(key, static_cast<int>(out_.positions.size()));
+        if (!inserted) return it->second;
+        const int id = it->second;
+        out_.positions.push_back(mesh_.point(p));
+        out_.points.push_back(p);
+        slot_of_point_.push_back(slot);
+        position_in_slot_.push_back(-1);
+        if (slot >= 0) edges[slot].points.emplace_back(p.t, id);
+        else face_points.emplace_back(p.face, id);
+        return id;
+    }
+
+    /// Sorts the points along each edge and the face points by face. Call once every point is in.
+    void finish() {
+        for (EdgeSlot& e : edges) {
+            std::sort(e.points.begin(), e.points.end());
+            for (std::size_t i = 0; i < e.points.size(); ++i)
+                position_in_slot_[e.points[i].second - mesh_.num_vertices()] = static_cast<int>(i) + 1;
+        }
+        std::sort(face_points.begin(), face_points.end());
+    }
+
+    /// The slot of the fine edge of representative halfedge rep, or -1 when no point lies on it.
+    int slot_of_rep(int rep) const {
+        auto it = slot_of_rep_.find(rep);
+        return it == slot_of_rep_.end() ? -1 : it->second;
+    }
+    bool is_vertex(int id) const { return id < mesh_.num_vertices(); }
+    /// For an edge point: its slot; else -1.
+    int slot_of(int id) const { return is_vertex(id) ? -1 : slot_of_point_[id - mesh_.num_vertices()]; }
+    /// For an edge point: its index in [v0, points..., v1] of its slot.
+    int position_in_slot(int id) const { return position_in_slot_[id - mesh_.num_vertices()]; }
+    const SurfacePoint& point(int id) const { return out_.points[id]; }
+
+    std::vector<EdgeSlot> edges;
+    std::vector<std::pair<int, int>> face_points;  // (face, overlay vertex), sorted once finish() ran
+
+private:
+    const Mesh& mesh_;
+    Overlay& out_;
+    std::unordered_map<PointKey, int, PointKeyHash> ids_;
+    std::unordered_map<int, int> slot_of_rep_;
+    std::vector<int> slot_of_point_;      // per vertex beyond T's
+    std::vector<int> position_in_slot_;   // per vertex beyond T's
+};
+
+/// A polyline segment through the inside of a fine face.
+struct Chord {
+    int face;
+    int a, b;  // overlay vertices
+    int edge;  // coarse edge
+};
+
+/// Cuts one fine face along its chords and triangulates the pieces.
+///
+/// The face is laid out in 2D. Its boundary is the cycle of its corners and of the edge points on its sides, in
+/// the exact order of their edge parameters; the chords and the face points inside make a plane graph with it.
+/// Each bounded face of that graph is triangulated by ear clipping. Three points on one side of the fine face are
+/// collinear by construction, whatever the rounding of their 2D positions says. Whatever the input, this ends:
+/// a chord that crosses or overlaps another, or that dangles, is left out (and reported), and ear clipping removes
+/// one vertex per step.
+class FaceCutter {
+public:
+    FaceCutter(const Mesh& mesh, const PointTable& table, Overlay& out) : mesh_(mesh), table_(table), out_(out) {}
+
+    void cut(int f, const Chord* chords_begin, const Chord* chords_end, const std::pair<int, int>* inside_begin,
+             const std::pair<int, int>* inside_end, std::vector<char>& broken_edge) {
+        layout(f, inside_begin, inside_end);
+        collect_chords(chords_begin, chords_end, broken_edge);
+        prune(broken_edge);
+        build_rotations();
+        trace_faces(f);
+    }
+
+private:
+    struct Node {
+        int id;
+        Eigen::Vector2d pos;
+        int mask;   // bit i: on side i (from corner i to corner i+1); 0 inside
+        int side;   // the side along which the boundary runs forward from here; -1 inside
+        int cycle;  // position on the boundary cycle; -1 inside
+    };
+    struct LocalChord {
+        int a, b, edge;
+        bool alive;
+    };
+
+    void layout(int f, const std::pair<int, int>* inside_begin, const std::pair<int, int>* inside_end) {
+        nodes_.clear();
+        const auto& tri = mesh_.triangle(f);
+        corner_[0] = Eigen::Vector2d(0.0, 0.0);
+        corner_[1] = Eigen::Vector2d(mesh_.length(3 * f), 0.0);
+        corner_[2] = mesh_.apex(3 * f);
+        for (int i = 0; i < 3; ++i) {
+            nodes_.push_back({tri[i], corner_[i], (1 << i) | (1 << ((i + 2) % 3)), i, 0});
+            const int slot = table_.slot_of_rep(edge_representative(mesh_, 3 * f + i));
+            if (slot < 0) continue;
+            const PointTable::EdgeSlot& e = table_.edges[slot];
+            const bool forward = tri[i] == e.v0;
+            const Eigen::Vector2d& p0 = forward ? corner_[i] : corner_[(i + 1) % 3];
+            const Eigen::Vector2d& p1 = forward ? corner_[(i + 1) % 3] : corner_[i];
+            const int n = static_cast<int>(e.points.size());
+            for (int k = 0; k < n; ++k) {
+                const auto& [t, id] = e.points[forward ? k : n - 1 - k];
+                nodes_.push_back({id, (1.0 - t) * p0 + t * p1, 1 << i, i, 0});
+            }
+        }
+        boundary_count_ = static_cast<int>(nodes_.size());
+        for (int k = 0; k < boundary_count_; ++k) nodes_[k].cycle = k;
+        for (auto it = inside_begin; it != inside_end; ++it) {
+            const auto& b = table_.point(it->second).bary;
+            nodes_.push_back({it->second, b[0] * corner_[0] + b[1] * corner_[1] + b[2] * corner_[2], 0, -1, -1});
+        }
+    }
+
+    int local_of(int id) const {
+        for (int k = 0; k < static_cast<int>(nodes_.size()); ++k)
+            if (nodes_[k].id == id) return k;
+        return -1;
+    }
+
+    /// Twice the signed area of (i, j, k); exactly 0 for three points on one side of the fine face.
+    double orient(int i, int j, int k) const {
+        if (nodes_[i].mask & nodes_[j].mask & nodes_[k].mask) return 0.0;
+        const Eigen::Vector2d u = nodes_[j].pos - nodes_[i].pos;
+        const Eigen::Vector2d v = nodes_[k].pos - nodes_[i].pos;
+        return u.x() * v.y() - u.y() * v.x();
+    }
+
+    static int sign(double x) { return (x > 0.0) - (x < 0.0); }
+
+    /// Whether p lies on the closed segment from a to b, given that the three are collinear.
+    bool between(int a, int b, int p) const {
+        const Eigen::Vector2d d = nodes_[b].pos - nodes_[a].pos;
+        const double s = d.dot(nodes_[p].pos - nodes_[a].pos);
+        return s >= 0.0 && s <= d.squaredNorm();
+    }
+
+    /// Whether two chords meet anywhere but at a common end point (where they may still overlap).
+    bool conflict(const LocalChord& c, const LocalChord& d) const {
+        int shared = -1, x = -1, y = -1;
+        if (c.a == d.a) shared = c.a, x = c.b, y = d.b;
+        else if (c.a == d.b) shared = c.a, x = c.b, y = d.a;
+        else if (c.b == d.a) shared = c.b, x = c.a, y = d.b;
+        else if (c.b == d.b) shared = c.b, x = c.a, y = d.a;
+        if (shared >= 0) {
+            // From a common end, two chords overlap when they leave in the same direction.
+            return orient(shared, x, y) == 0.0 &&
+                   (nodes_[x].pos - nodes_[shared].pos).dot(nodes_[y].pos - nodes_[shared].pos) > 0.0;
+        }
+        if (nodes_[c.a].cycle >= 0 && nodes_[c.b].cycle >= 0 && nodes_[d.a].cycle >= 0 &&
+            nodes_[d.b].cycle >= 0) {
+            // Chords between boundary points of a convex face cross exactly when their ends interleave.
+            int lo = nodes_[c.a].cycle, hi = nodes_[c.b].cycle;
+            if (lo > hi) std::swap(lo, hi);
+            const bool in0 = nodes_[d.a].cycle > lo && nodes_[d.a].cycle < hi;
+            const bool in1 = nodes_[d.b].cycle > lo && nodes_[d.b].cycle < hi;
+            return in0 != in1;
+        }
+        const int o1 = sign(orient(c.a, c.b, d.a)), o2 = sign(orient(c.a, c.b, d.b));
+        const int o3 = sign(orient(d.a, d.b, c.a)), o4 = sign(orient(d.a, d.b, c.b));
+        if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+        return (o1 == 0 && between(c.a, c.b, d.a)) || (o2 == 0 && between(c.a, c.b, d.b)) ||
+               (o3 == 0 && between(d.a, d.b, c.a)) || (o4 == 0 && between(d.a, d.b, c.b));
+    }
+
+    void collect_chords(const Chord* begin, const Chord* end, std::vector<char>& broken_edge) {
+        chords_.clear();
+        for (const Chord* c = begin; c != end; ++c) {
+            const int a = local_of(c->a), b = local_of(c->b);
+            if (a < 0 || b < 0 || a == b) {
+                broken_edge[c->edge] = 1;
+                continue;
+            }
+            // Along a side of the face: that is the boundary already (the caller sends these elsewhere).
+            if (nodes_[a].mask & nodes_[b].mask) continue;
+            LocalChord lc{a, b, c->edge, true};
+            bool keep = true;
+            for (const LocalChord& other : chords_) {
+                const bool same = (other.a == a && other.b == b) || (other.a == b && other.b == a);
+                if (same || conflict(other, lc)) {
+                    broken_edge[other.edge] = 1;
+                    broken_edge[c->edge] = 1;
+                    keep = false;
+                    break;
+                }
+            }
+            if (keep) chords_.push_back(lc);
+        }
+    }
+
+    /// Leaves out chords that end inside the face at a point of degree one, and chords that are not connected to
+    /// the boundary: both are signs of an invalid G, and neither bounds a face of the plane graph.
+    void prune(std::vector<char>& broken_edge) {
+        const int n = static_cast<int>(nodes_.size());
+        degree_.assign(n, 0);
+        for (int k = 0; k < boundary_count_; ++k) degree_[k] = 2;
+        for (const LocalChord& c : chords_) ++degree_[c.a], ++degree_[c.b];
+        for (bool changed = true; changed;) {
+            changed = false;
+            for (LocalChord& c : chords_) {
+                if (!c.alive) continue;
+                if ((nodes_[c.a].cycle < 0 && degree_[c.a] <= 1) || (nodes_[c.b].cycle < 0 && degree_[c.b] <= 1)) {
+                    c.alive = false;
+                    --degree_[c.a], --degree_[c.b];
+                    broken_edge[c.edge] = 1;
+                    changed = true;
+                }
+            }
+        }
+        // Inside points reached from the boundary through live chords.
+        reached_.assign(n, 0);
+        for (int k = 0; k < boundary_count_; ++k) reached_[k] = 1;
+        for (bool changed = true; changed;) {
+            changed = false;
+            for (const LocalChord& c : chords_) {
+                if (c.alive && reached_[c.a] != reached_[c.b]) {
+                    reached_[c.a] = reached_[c.b] = 1;
+                    changed = true;
+                }
+            }
+        }
+        for (LocalChord& c : chords_) {
+            if (c.alive && !reached_[c.a]) {
+                c.alive = false;
+                broken_edge[c.edge] = 1;
+            }
+        }
+    }
+
+    /// The neighbours of every node in counter-clockwise order. On the boundary, the next boundary node comes
+    /// first and the previous one last, whatever rounding says about chords nearly along a side, so that the
+    /// outer face is exactly the reversed boundary cycle.
+    void build_rotations() {
+        const int n = static_cast<int>(nodes_.size());
+        if (static_cast<int>(rotation_.size()) < n) rotation_.resize(n);
+        for (int k = 0; k < n; ++k) rotation_[k].clear();
+        std::vector<std::pair<double, int>>& around = scratch_angles_;
+        for (int u = 0; u < n; ++u) {
+            around.clear();
+            for (const LocalChord& c : chords_) {
+                if (!c.alive || (c.a != u && c.b != u)) continue;
+                const int v = c.a == u ? c.b : c.a;
+                const Eigen::Vector2d d = nodes_[v].pos - nodes_[u].pos;
+                double angle;
+                if (nodes_[u].cycle >= 0) {
+                    const int s = nodes_[u].side;
+                    const Eigen::Vector2d forward = corner_[(s + 1) % 3] - corner_[s];
+                    angle = std::atan2(forward.x() * d.y() - forward.y() * d.x(), forward.dot(d));
+                    if (angle < 0.0) angle = angle < -0.5 * k_pi ? k_pi : 0.0;
+                } else {
+                    angle = std::atan2(d.y(), d.x());
+                }
+                around.emplace_back(angle, v);
+            }
+            if (around.empty() && nodes_[u].cycle < 0) continue;
+            std::sort(around.begin(), around.end());
+            std::vector<int>& rot = rotation_[u];
+            if (nodes_[u].cycle >= 0) rot.push_back((u + 1) % boundary_count_);
+            for (const auto& [angle, v] : around) rot.push_back(v);
+            if (nodes_[u].cycle >= 0) rot.push_back((u + boundary_count_ - 1) % boundary_count_);
+        }
+    }
+
+    int index_in_rotation(int u, int v) const {
+        const std::vector<int>& rot = rotation_[u];
+        for (int k = 0; k < static_cast<int>(rot.size()); ++k)
+            if (rot[k] == v) return k;
+        return -1;
+    }
+
+    void trace_faces(int f) {
+        const int n = static_cast<int>(nodes_.size());
+        offset_.assign(n + 1, 0);
+        for (int u = 0; u < n; ++u) offset_[u + 1] = offset_[u] + static_cast<int>(rotation_[u].size());
+        const int total = offset_[n];
+        used_.assign(total, 0);
+        // The outer face: the boundary cycle run backwards.
+        for (int u = 0; u < boundary_count_; ++u) used_[offset_[u + 1] - 1] = 1;
+        for (int u = 0; u < n; ++u) {
+            for (int k = 0; k < static_cast<int>(rotation_[u].size()); ++k) {
+                if (used_[offset_[u] + k]) continue;
+                polygon_.clear();
+                int x = u, i = k;
+                bool closed = false;
+                for (int steps = 0; steps <= total; ++steps) {
+                    if (used_[offset_[x] + i]) {
+                        closed = x == u && i == k;
+                        break;
+                    }
+                    used_[offset_[x] + i] = 1;
+                    polygon_.push_back(x);
+                    const int y = rotation_[x][i];
+                    const int j = index_in_rotation(y, x);
+                    if (j < 0) break;
+                    const int deg = static_cast<int>(rotation_[y].size());
+                    x = y;
+                    i = (j + deg - 1) % deg;
+                }
+                if (closed && polygon_.size() >= 3) triangulate(f);
+            }
+        }
+    }
+
+    void emit(int f, int a, int b, int c) {
+        out_.triangles.push_back({nodes_[a].id, nodes_[b].id, nodes_[c].id});
+        out_.fine_face.push_back(f);
+    }
+
+    /// Ear clipping of polygon_ (counter-clockwise, possibly touching itself at a vertex): the strictly convex
+    /// ear of best shape with no other vertex in it; when there is none (degenerate input), the corner of largest
+    /// signed area, so that each step removes a vertex and the loop ends.
+    void triangulate(int f) {
+        std::vector<int>& poly = polygon_;
+        while (poly.size() > 3) {
+            const int n = static_cast<int>(poly.size());
+            int best = -1;
+            bool best_is_ear = false;
+            double best_quality = -std::numeric_limits<double>::infinity();
+            for (int i = 0; i < n; ++i) {
+                const int a = poly[(i + n - 1) % n], b = poly[i], c = poly[(i + 1) % n];
+                if (nodes_[a].id == nodes_[c].id) continue;
+                const double o = orient(a, b, c);
+                const double scale = (nodes_[b].pos - nodes_[a].pos).squaredNorm() +
+                                      (nodes_[c].pos - nodes_[b].pos).squaredNorm() +
+                                      (nodes_[a].pos - nodes_[c].pos).squaredNorm();
+                const double quality = scale > 0.0 ? o / scale : o;
+                bool ear = o > 0.0;
+                for (int j = 0; ear && j < n; ++j) {
+                    const int p = poly[j];
+                    const int id = nodes_[p].id;
+                    if (id == nodes_[a].id || id == nodes_[b].id || id == nodes_[c].id) continue;
+                    if (orient(a, b, p) >= 0.0 && orient(b, c, p) >= 0.0 && orient(c, a, p) >= 0.0) ear = false;
+                }
+                if ((ear && !best_is_ear) || (ear == best_is_ear && quality > best_quality)) {
+                    best = i;
+                    best_is_ear = ear;
+                    best_quality = quality;
+                }
+            }
+            if (best < 0) return;  // only pinched corners left: nothing sensible to cut
+            emit(f, poly[(best + n - 1) % n], poly[best], poly[(best + 1) % n]);
+            poly.erase(poly.begin() + best);
+        }
+        if (nodes_[poly[0]].id != nodes_[poly[2]].id) emit(f, poly[0], poly[1], poly[2]);
+    }
+
+    const Mesh& mesh_;
+    const PointTable& table_;
+    Overlay& out_;
+    Eigen::Vector2d corner_[3];
+    std::vector<Node> nodes_;
+    int boundary_count_ = 0;
+    std::vector<LocalChord> chords_;
+    std::vector<int> degree_;
+    std::vector<char> reached_;
+    std::vector<std::vector<int>> rotation_;
+    std::vector<std::pair<double, int>> scratch_angles_;
+    std::vector<int> offset_;
+    std::vector<char> used_;
+    std::vector<int> polygon_;
+};
+
+/// The fine faces that contain both points (at most a handful; sorted).
+void common_faces(const Mesh& mesh, const PointTable& table, int a, int b, std::vector<int>& out) {
+    auto faces_of = [&](int id, std::vector<int>& faces) {
+        faces.clear();
+        if (table.is_vertex(id)) {
+            for (int h : mesh.outgoing_halfedges(id)) faces.push_back(Mesh::face_of(h));
+        } else if (table.slot_of(id) >= 0) {
+            const auto& e = table.edges[table.slot_of(id)];
+            for (int h : {mesh.find_halfedge(e.v0, e.v1), mesh.find_halfedge(e.v1, e.v0)})
+                if (h >= 0) faces.push_back(Mesh::face_of(h));
+        } else {
+            faces.push_back(table.point(id).face);
+        }
+        std::sort(faces.begin(), faces.end());
+    };
+    static thread_local std::vector<int> fa, fb;
+    faces_of(a, fa);
+    faces_of(b, fb);
+    out.clear();
+    std::set_intersection(fa.begin(), fa.end(), fb.begin(), fb.end(), std::back_inserter(out));
+}
+
+/// When a and b lie on one fine edge (its ends or points on it), the overlay vertices from a to b along it,
+/// both included; else empty.
+std::vector<int> along_edge(const Mesh& mesh, const PointTable& table, int a, int b) {
+    int v0 = -1, v1 = -1, slot = -1;
+    const bool va = table.is_vertex(a), vb = table.is_vertex(b);
+    if (va && vb) {
+        if (mesh.find_halfedge(a, b) < 0 && mesh.find_halfedge(b, a) < 0) return {};
+        v0 = std::min(a, b);
+        v1 = std::max(a, b);
+        int h = mesh.find_halfedge(v0, v1);
+        if (h < 0) h = mesh.find_halfedge(v1, v0);
+        slot = table.slot_of_rep(edge_representative(mesh, h));
+    } else {
+        const int sa = table.slot_of(a), sb = table.slot_of(b);
+        slot = sa >= 0 ? sa : sb;
+        if (slot < 0) return {};
+        if ((!va && sa != slot) || (!vb && sb != slot)) return {};
+        v0 = table.edges[slot].v0;
+        v1 = table.edges[slot].v1;
+        if ((va && a != v0 && a != v1) || (vb && b != v0 && b != v1)) return {};
+    }
+    const int count = slot >= 0 ? static_cast<int>(table.edges[slot].points.size()) : 0;
+    auto position = [&](int id) { return id == v0 ? 0 : id == v1 ? count + 1 : table.position_in_slot(id); };
+    auto vertex_at = [&](int k) { return k == 0 ? v0 : k == count + 1 ? v1 : table.edges[slot].points[k - 1].second; };
+    const int pa = position(a), pb = position(b);
+    std::vector<int> run;
+    const int step = pa < pb ? 1 : -1;
+    for (int k = pa;; k += step) {
+        run.push_back(vertex_at(k));
+        if (k == pb) break;
+    }
+    return run;
+}
+
+/// Topology of each region, as a surface of its own (cut open along the polylines).
+struct RegionShape {
+    int triangles = 0;
+    int boundary_edges = 0;
+    int vertices = 0;   // classes of corners glued across uncut edges
+    int loops = 0;
+    bool simple = true;  // every boundary vertex has one boundary edge out, and no overlay vertex repeats
+    double area = 0.0;
+    bool disk() const {
+        const int twice_edges = 3 * triangles + boundary_edges;
+        if (twice_edges % 2) return false;
+        return simple && loops == 1 && vertices - twice_edges / 2 + triangles == 1;
+    }
+};
+
+}  // namespace
+
+Overlay build_overlay(const GeodesicTriangulation& g) {
+    const Mesh& mesh = g.fine().mesh;
+    const CoarseMesh& coarse = g.coarse();
+    const int num_coarse_edges = static_cast<int>(coarse.n_edges());
+    const int num_coarse_faces = static_cast<int>(coarse.n_faces());
+    Overlay out;
+    PointTable table(mesh, out);
+
+    // 1. Every point of every polyline, and every location, becomes an overlay vertex.
+    std::vector<char> broken(num_coarse_edges, 0);
+    std::vector<std::vector<int>> ids(num_coarse_edges);
+    std::vector<int> location_id(coarse.n_vertices(), -1);
+    for (auto v : coarse.vertices()) location_id[v.idx()] = table.id_of(g.location(v));
+    for (auto e : coarse.edges()) {
+        const Polyline& line = g.polyline(e);
+        std::vector<int>& line_ids = ids[e.idx()];
+        for (const SurfacePoint& p : line) {
+            const int id = table.id_of(p);
+            if (id < 0) {
+                line_ids.clear();
+                break;
+            }
+            line_ids.push_back(id);
+        }
+        if (line_ids.size() < 2) broken[e.idx()] = 1;
+    }
+    table.finish();
+
+    // 2. Each segment runs along a fine edge (the cut follows the edge's pieces) or through one fine face (a
+    // chord of that face). The chain of an edge is its overlay vertices along the cut, oriented like its polyline.
+    std::vector<std::vector<int>> chain(num_coarse_edges);
+    std::vector<Chord> chords;
+    std::unordered_map<std::uint64_t, int> cut_owner;
+    auto mark_cut = [&](int a, int b, int edge) {
+        auto [it, inserted] = cut_owner.emplace(undirected_key(a, b), edge);
+        if (!inserted && it->second != edge) broken[it->second] = broken[edge] = 1;  // overlapping polylines
+    };
+    std::vector<int> faces;
+    for (int e = 0; e < num_coarse_edges; ++e) {
+        const std::vector<int>& line_ids = ids[e];
+        if (line_ids.size() < 2) continue;
+        std::vector<int>& c = chain[e];
+        c.push_back(line_ids[0]);
+        for (std::size_t k = 0; k + 1 < line_ids.size(); ++k) {
+            const int a = line_ids[k], b = line_ids[k + 1];
+            if (a == b) continue;
+            const std::vector<int> run = along_edge(mesh, table, a, b);
+            if (!run.empty()) {
+                for (std::size_t r = 0; r + 1 < run.size(); ++r) {
+                    mark_cut(run[r], run[r + 1], e);
+                    c.push_back(run[r + 1]);
+                }
+                continue;
+            }
+            common_faces(mesh, table, a, b, faces);
+            if (faces.empty()) broken[e] = 1;
+            else chords.push_back({faces[0], a, b, e});
+            mark_cut(a, b, e);
+            c.push_back(b);
+        }
+    }
+    std::stable_sort(chords.begin(), chords.end(), [](const Chord& x, const Chord& y) { return x.face < y.face; });
+
+    // 3. Triangulate: untouched fine faces as they are, the others cut along their chords.
+    const int nf = mesh.num_faces();
+    std::vector<char> touched(nf, 0);
+    for (const Chord& c : chords) touched[c.face] = 1;
+    for (const auto& [f, id] : table.face_points) touched[f] = 1;
+    for (const auto& e : table.edges) {
+        for (int h : {mesh.find_halfedge(e.v0, e.v1), mesh.find_halfedge(e.v1, e.v0)})
+            if (h >= 0) touched[Mesh::face_of(h)] = 1;
+    }
+    out.triangles.reserve(nf + 4 * chords.size());
+    out.fine_face.reserve(out.triangles.capacity());
+    FaceCutter cutter(mesh, table, out);
+    std::size_t next_chord = 0, next_inside = 0;
+    for (int f = 0; f < nf; ++f) {
+        if (!touched[f]) {
+            out.triangles.push_back(mesh.triangle(f));
+            out.fine_face.push_back(f);
+            continue;
+        }
+        std::size_t chord_end = next_chord;
+        while (chord_end < chords.size() && chords[chord_end].face == f) ++chord_end;
+        std::size_t inside_end = next_inside;
+        while (inside_end < table.face_points.size() && table.face_points[inside_end].first == f) ++inside_end;
+        cutter.cut(f, chords.data() + next_chord, chords.data() + chord_end, table.face_points.data() + next_inside,
+                   table.face_points.data() + inside_end, broken);
+        next_chord = chord_end;
+        next_inside = inside_end;
+    }
+
+    // 4. Halfedges of the overlay, by tail vertex, to find a directed edge and its twin.
+    const int nt = static_cast<int>(out.triangles.size());
+    const int nv = static_cast<int>(out.positions.size());
+    std::vector<int> first(nv + 1, 0);
+    for (const auto& t : out.triangles)
+        for (int v : t) ++first[v + 1];
+    for (int v = 0; v < nv; ++v) first[v + 1] += first[v];
+    std::vector<std::pair<int, int>> leaving(first[nv]);  // (head, halfedge 3·t + k)
+    {
+        std::vector<int> fill(first.begin(), first.end() - 1);
+        for (int t = 0; t < nt; ++t)
+            for (int k = 0; k < 3; ++k)
+                leaving[fill[out.triangles[t][k]]++] = {out.triangles[t][(k + 1) % 3], 3 * t + k};
+    }
+    auto find_halfedge = [&](int a, int b) {
+        for (int i = first[a]; i < first[a + 1]; ++i)
+            if (leaving[i].first == b) return leaving[i].second;
+        return -1;
+    };
+    auto tail = [&](int h) { return out.triangles[h / 3][h % 3]; };
+    auto head = [&](int h) { return out.triangles[h / 3][(h % 3 + 1) % 3]; };
+
+    // 5. Regions: triangles joined across uncut edges; corners joined likewise, for the regions' own topology.
+    DisjointSets triangle_sets(nt), corner_sets(3 * nt);
+    std::vector<char> boundary_halfedge(3 * nt, 0);
+    std::vector<int> twin(3 * nt, -1);
+    for (int h = 0; h < 3 * nt; ++h) {
+        const int a = tail(h), b = head(h);
+        const int t = find_halfedge(b, a);
+        twin[h] = t;
+        const bool cut = t < 0 || cut_owner.count(undirected_key(a, b)) != 0;
+        if (cut) {
+            boundary_halfedge[h] = 1;
+            continue;
+        }
+        if (h > t) continue;
+        triangle_sets.unite(h / 3, t / 3);
+        corner_sets.unite(h, 3 * (t / 3) + (t % 3 + 1) % 3);  // both corners at a
+        corner_sets.unite(3 * (h / 3) + (h % 3 + 1) % 3, t);  // both corners at b
+    }
+    std::vector<int> region(nt);
+    std::vector<int> region_of_root(nt, -1);
+    int num_regions = 0;
+    for (int t = 0; t < nt; ++t) {
+        const int root = triangle_sets.find(t);
+        if (region_of_root[root] < 0) region_of_root[root] = num_regions++;
+        region[t] = region_of_root[root];
+    }
+    out.num_regions = num_regions;
+
+    std::vector<RegionShape> shape(num_regions);
+    {
+        std::vector<char> class_seen(3 * nt, 0);
+        std::vector<int> out_edge(3 * nt, -1);  // per corner class: its boundary halfedge, if one
+        std::vector<int> stamp(nv, -1);
+        for (int t = 0; t < nt; ++t) {
+            RegionShape& s = shape[region[t]];
+            ++s.triangles;
+            const auto& tri = out.triangles[t];
+            s.area += 0.5 * (out.positions[tri[1]] - out.positions[tri[0]])
+                                .cross(out.positions[tri[2]] - out.positions[tri[0]])
+                                .norm();
+            for (int k = 0; k < 3; ++k) {
+                const int h = 3 * t + k;
+                const int cls = corner_sets.find(h);
+                if (!class_seen[cls]) {
+                    class_seen[cls] = 1;
+                    ++s.vertices;
+                }
+                if (!boundary_halfedge[h]) continue;
+                ++s.boundary_edges;
+                if (out_edge[cls] >= 0) s.simple = false;
+                out_edge[cls] = h;
+                if (stamp[tail(h)] == region[t]) s.simple = false;
+                stamp[tail(h)] = region[t];
+            }
+        }
+        std::vector<char> visited(3 * nt, 0);
+        for (int h = 0; h < 3 * nt; ++h) {
+            if (!boundary_halfedge[h] || visited[h]) continue;
+            RegionShape& s = shape[region[h / 3]];
+            ++s.loops;
+            for (int x = h, steps = 0; x >= 0 && !visited[x] && steps < 3 * nt; ++steps) {
+                visited[x] = 1;
+                x = out_edge[corner_sets.find(3 * (x / 3) + (x % 3 + 1) % 3)];
+            }
+        }
+    }
+
+    // 6. Claims: the region on the left of each path of each coarse face.
+    std::vector<char> bad(num_coarse_faces, 0);
+    std::vector<std::vector<int>> claims(num_coarse_faces);
+    std::vector<int> path_edges(num_coarse_faces, 0);
+    for (auto f : coarse.faces()) {
+        const int fi = f.idx();
+        for (auto h : coarse.fh_range(f)) {
+            const int e = coarse.edge_handle(h).idx();
+            const std::vector<int>& c = chain[e];
+            if (broken[e] || c.size() < 2) {
+                bad[fi] = 1;
+                continue;
+            }
+            const bool forward = h == coarse.halfedge_handle(coarse.edge_handle(h), 0);
+            const int from = location_id[coarse.from_vertex_handle(h).idx()];
+            const int to = location_id[coarse.to_vertex_handle(h).idx()];
+            if ((forward ? c.front() : c.back()) != from || (forward ? c.back() : c.front()) != to || from < 0)
+                bad[fi] = 1;
+            for (std::size_t k = 0; k + 1 < c.size(); ++k) {
+                const int a = forward ? c[k] : c[c.size() - 1 - k];
+                const int b = forward ? c[k + 1] : c[c.size() - 2 - k];
+                const int he = find_halfedge(a, b);
+                ++path_edges[fi];
+                if (he < 0) {
+                    bad[fi] = 1;
+                    continue;
+                }
+                claims[fi].push_back(region[he / 3]);
+            }
+        }
+        std::sort(claims[fi].begin(), claims[fi].end());
+        claims[fi].erase(std::unique(claims[fi].begin(), claims[fi].end()), claims[fi].end());
+    }
+    std::vector<int> owner(num_regions, -1), claimers(num_regions, 0);
+    for (int fi = 0; fi < num_coarse_faces; ++fi) {
+        for (int r : claims[fi]) {
+            ++claimers[r];
+            if (owner[r] < 0) owner[r] = fi;
+        }
+    }
+    out.patch_area.assign(num_coarse_faces, 0.0);
+    for (int r = 0; r < num_regions; ++r) {
+        if (owner[r] >= 0) {
+            out.patch_area[owner[r]] += shape[r].area;
+        } else {
+            ++out.unclaimed_regions;
+            out.unclaimed_area += shape[r].area;
+        }
+    }
+    for (auto f : coarse.faces()) {
+        const int fi = f.idx();
+        if (claims[fi].size() != 1) {
+            bad[fi] = 1;
+            continue;
+        }
+        const int r = claims[fi][0];
+        if (claimers[r] != 1 || !shape[r].disk() || shape[r].boundary_edges != path_edges[fi]) bad[fi] = 1;
+    }
+    for (int fi = 0; fi < num_coarse_faces; ++fi)
+        if (bad[fi]) out.bad_patches.push_back(fi);
+    for (int e = 0; e < num_coarse_edges; ++e)
+        if (broken[e]) out.broken_edges.push_back(e);
+
+    out.patch.resize(nt);
+    for (int t = 0; t < nt; ++t) out.patch[t] = owner[region[t]];
+
+    // 7. Greedy colouring of the patches in face order, over the adjacency that the overlay shows.
+    std::vector<std::pair<int, int>> adjacent;
+    for (int h = 0; h < 3 * nt; ++h) {
+        if (!boundary_halfedge[h] || twin[h] < 0) continue;
+        const int a = out.patch[h / 3], b = out.patch[twin[h] / 3];
+        if (a >= 0 && b >= 0 && a != b) adjacent.emplace_back(a, b);
+    }
+    std::sort(adjacent.begin(), adjacent.end());
+    adjacent.erase(std::unique(adjacent.begin(), adjacent.end()), adjacent.end());
+    std::vector<int> patch_colour(num_coarse_faces, -1);
+    std::vector<char> taken;
+    std::size_t a_begin = 0;
+    for (int fi = 0; fi < num_coarse_faces; ++fi) {
+        std::size_t a_end = a_begin;
+        while (a_end < adjacent.size() && adjacent[a_end].first == fi) ++a_end;
+        taken.assign(a_end - a_begin + 1, 0);
+        for (std::size_t i = a_begin; i < a_end; ++i) {
+            const int c = patch_colour[adjacent[i].second];
+            if (c >= 0 && c < static_cast<int>(taken.size())) taken[c] = 1;
+        }
+        int c = 0;
+        while (taken[c]) ++c;
+        patch_colour[fi] = c;
+        out.num_colours = std::max(out.num_colours, c + 1);
+        a_begin = a_end;
+    }
+    out.colour.resize(nt);
+    for (int t = 0; t < nt; ++t) out.colour[t] = out.patch[t] >= 0 ? patch_colour[out.patch[t]] : -1;
+    return out;
+}
+
+}  // namespace geotri
