@@ -22,7 +22,7 @@ namespace {
 // A window that ends within this fraction of an edge's length from a vertex also gives that vertex its distance.
 // The ray to the vertex then misses the window by at most that much, which changes the length only to second
 // order (~1e-18 relative). It closes the gaps that rounding leaves where a ray runs exactly through a vertex.
-constexpr double k_cover = 1e-9;
+constexpr double k_cover = 1e-12;
 // A window is dropped only when a vertex beats it by more than this relative margin, so that ties are kept.
 constexpr double k_margin = 1e-12;
 // Cone angles within this of 2π count as flat: geodesics pass straight through, no pseudo-source is needed, and the
@@ -30,7 +30,9 @@ constexpr double k_margin = 1e-12;
 constexpr double k_flat = 1e-13;
 constexpr double k_two_pi = 6.283185307179586476925286766559;
 // How far a saddle's emission reaches beyond its exact shadow (radians), to cover rounding at the shadow's rims.
-constexpr double k_shadow_slack = 1e-9;
+// A path can bend by this much less than π at the saddle, so it must stay far below what a straightness check
+// allows; rays just outside the shadow are carried by the windows that pass beside the saddle anyway.
+constexpr double k_shadow_slack = 1e-12;
 // A path's edge crossing this close to a vertex (relative to the mesh size) is reported as that vertex.
 constexpr double k_vertex_snap = 1e-12;
 
@@ -413,9 +415,19 @@ void ExactGeodesic::Impl::emit_from_vertex(int v) {
     const double shadow_length = cone - 2.0 * M_PI + 2.0 * k_shadow_slack;
     if (!everywhere && shadow_length <= 0.0) return;
 
+    // Along an edge too, only inside the shadow: outside it the path along the edge bends at v by less than π,
+    // so it is not a geodesic, and the geodesic that passes beside v (which windows carry) is shorter, if only by
+    // rounding; taking the edge would leave a polyline that is not straight.
+    auto in_shadow = [&](double angle) {
+        if (everywhere) return true;
+        double offset = std::fmod(angle - shadow_start, cone);
+        if (offset < 0.0) offset += cone;
+        return offset <= shadow_length;
+    };
     for (int h : mesh_.outgoing_halfedges(v)) {
-        relax_vertex(mesh_.head(h), d + mesh_.length(h), {Via::vertex, v});
-        relax_vertex(mesh_.tail(Mesh::prev(h)), d + mesh_.length(Mesh::prev(h)), {Via::vertex, v});
+        if (in_shadow(mesh_.polar_angle(h))) relax_vertex(mesh_.head(h), d + mesh_.length(h), {Via::vertex, v});
+        if (in_shadow(mesh_.polar_angle(h) + mesh_.corner_angle(h)))
+            relax_vertex(mesh_.tail(Mesh::prev(h)), d + mesh_.length(Mesh::prev(h)), {Via::vertex, v});
         const int opposite = Mesh::next(h);
         const int beyond = mesh_.twin(opposite);
         if (beyond < 0) continue;
@@ -717,7 +729,11 @@ std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint&
         // via == Via::window: `position` is in the frame of the window's halfedge, on the face side.
         const Window& w = windows_[id];
         const int h = w.halfedge;
-        const double x = std::clamp(w.crossing_of(position), w.b0, w.b1);
+        // A vertex within k_cover of the window's end took its distance from the straight ray to it, which may
+        // cross the edge just outside [b0, b1]: follow that ray, or the path would get a hair-long kink there.
+        const double slack = k_cover * mesh_.length(h);
+        const double x = std::clamp(std::clamp(w.crossing_of(position), w.b0 - slack, w.b1 + slack), 0.0,
+                                    mesh_.length(h));
         append(point_on_halfedge(h, x));
         if (w.parent < 0) {
             via = w.origin >= 0 ? Via::vertex : Via::source;
