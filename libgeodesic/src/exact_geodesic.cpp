@@ -81,7 +81,7 @@ private:
     void relax_vertex(int v, double distance, Predecessor predecessor);
     void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
     bool trim_by_end_vertices(Window& w) const;
-    bool trim_by_other_paths(Window& w, int self) const;
+    bool trim_by_other_windows(Window& w, int self) const;
     void propagate_window(int id);
     void emit_from_vertex(int v);
     double incoming_polar_angle(int v) const;
@@ -245,12 +245,12 @@ bool trim_ends_against(Window& w, const EdgeProfile& other, double o0, double o1
 
 }  // namespace
 
-bool ExactGeodesic::Impl::trim_by_other_paths(Window& w, int self) const {
-    // Where another path to a point of the edge is shorter than w, no shortest path goes through w there: it could
-    // take the other path to the same point instead. The other paths are the windows on the same edge (either
-    // side), and the paths through the apexes of the two faces of the edge, straight inside their face (Xin and
-    // Wang's filter, done exactly). The other path is kept, so coverage is never lost; both must differ by more
-    // than `slack`, so that two tied paths never remove each other.
+bool ExactGeodesic::Impl::trim_by_other_windows(Window& w, int self) const {
+    // Where another window on the same edge (either side) is shorter than w, no shortest path goes through w there:
+    // it could take the other window's path to the same point instead. The other window keeps its part, so coverage
+    // is never lost; both must differ by more than `slack`, so that two tied windows never remove each other.
+    // (Testing the paths through the apexes of the edge's two faces as well cut almost nothing: 8k windows of 1.9M
+    // on the bunny, for 27% more instructions.)
     if (w.sy == 0.0) return true;  // see trim_by_end_vertices
     const int h = w.halfedge;
     const double length = mesh_.length(h);
@@ -258,13 +258,6 @@ bool ExactGeodesic::Impl::trim_by_other_paths(Window& w, int self) const {
     for (int side = 0; side < 2; ++side) {
         const int list = side == 0 ? h : mesh_.twin(h);
         if (list < 0) continue;
-        const int apex = mesh_.tail(Mesh::prev(list));
-        const double d_apex = distance_[apex];
-        if (d_apex < k_infinity) {
-            const Vec2 a = mesh_.apex(list);
-            const EdgeProfile through_apex{side == 0 ? a.x() : length - a.x(), a.y(), d_apex};
-            if (!trim_ends_against(w, through_apex, 0.0, length, k_margin * (scale + d_apex))) return false;
-        }
         int looked = 0;
         for (int id = first_window_[list]; id >= 0 && looked < k_compare_lookahead; id = windows_[id].next_on_edge) {
             if (id == self) continue;
@@ -288,7 +281,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     if (!(b0 < b1)) return;
     Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, first_window_[h]};
     if (w.lower_bound() > max_distance_) return;
-    if (!trim_by_end_vertices(w) || !trim_by_other_paths(w, -1)) {
+    if (!trim_by_end_vertices(w) || !trim_by_other_windows(w, -1)) {
         ++stats_.windows_pruned;
         return;
     }
@@ -312,7 +305,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
 }
 
 void ExactGeodesic::Impl::propagate_window(int id) {
-    if (!trim_by_end_vertices(windows_[id]) || !trim_by_other_paths(windows_[id], id)) {
+    if (!trim_by_end_vertices(windows_[id]) || !trim_by_other_windows(windows_[id], id)) {
         ++stats_.windows_pruned;
         return;
     }
