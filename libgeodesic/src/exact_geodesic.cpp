@@ -38,6 +38,14 @@ constexpr double k_vertex_snap = 1e-12;
 
 enum class Via : std::uint8_t { none, source, vertex, window };
 
+constexpr unsigned char k_pending = 0;
+constexpr unsigned char k_propagated = 1;
+constexpr unsigned char k_merged = 2;
+// Windows of the same ray family (same pseudo-source, unfolded to the same place up to this relative rounding) that
+// touch on an edge are propagated as one.
+constexpr double k_same_source = 1e-13;
+constexpr int k_merge_lookahead = 8;
+
 // Windows compared with each other on an edge: the most recent ones, which are those the wavefront brings together.
 constexpr int k_compare_lookahead = 4;
 
@@ -82,7 +90,9 @@ private:
     void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
     bool trim_by_end_vertices(Window& w) const;
     bool trim_by_other_windows(Window& w, int self) const;
-    void propagate_window(int id);
+    void propagate_window(int popped);
+    int merge_with_siblings(int id);
+    int piece_covering(int id, double x) const;
     void emit_from_vertex(int v);
     double incoming_polar_angle(int v) const;
     void seed_from_point(const SurfacePoint& p, int source_index);
@@ -109,6 +119,9 @@ private:
     std::vector<int> first_window_;  // per halfedge
     std::vector<int> touched_halfedges_;
     std::vector<Window> windows_;
+    std::vector<unsigned char> window_state_;  // per window: pending, propagated or merged into another
+    std::vector<int> merged_pieces_;           // for merged windows: a count, then the ids of the pieces
+    std::vector<int> merge_scratch_;
     std::vector<std::pair<double, int>> queue_;  // min-heap; item >= 0 is a window, -1 - v a vertex emission
     std::vector<SurfacePoint> sources_;
     std::vector<StopPoint> stops_;
@@ -142,6 +155,8 @@ void ExactGeodesic::Impl::reset() {
     touched_vertices_.clear();
     touched_halfedges_.clear();
     windows_.clear();
+    window_state_.clear();
+    merged_pieces_.clear();
     queue_.clear();
     sources_.clear();
     stops_.clear();
@@ -289,6 +304,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     if (w.next_on_edge < 0) touched_halfedges_.push_back(h);
     first_window_[h] = id;
     windows_.push_back(w);
+    window_state_.push_back(k_pending);
     ++stats_.windows_created;
     const double tolerance = k_cover * length;
     if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
@@ -304,11 +320,73 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     push_queue(w.lower_bound(), id);
 }
 
-void ExactGeodesic::Impl::propagate_window(int id) {
-    if (!trim_by_end_vertices(windows_[id]) || !trim_by_other_windows(windows_[id], id)) {
+int ExactGeodesic::Impl::merge_with_siblings(int id) {
+    // The same ray family reaches an edge in fragments, one per path of faces. Merging the pending fragments
+    // before crossing the face keeps the window count near one per family and edge.
+    const Window w = windows_[id];
+    const double length = mesh_.length(w.halfedge);
+    const double source_tolerance = k_same_source * (length + w.source().norm() + w.sigma);
+    const double gap_tolerance = k_cover * length;
+    double b0 = w.b0, b1 = w.b1;
+    std::vector<int>& pieces = merge_scratch_;
+    pieces.assign(1, id);
+    // Fragments of one family arrive close together in time, so they sit near the front of the edge's list;
+    // a bounded look keeps the cost constant on edges that many families cross.
+    int looked = 0;
+    for (int s = first_window_[w.halfedge]; s >= 0 && looked < k_merge_lookahead; s = windows_[s].next_on_edge) {
+        ++looked;
+        if (window_state_[s] != k_pending || s == id) continue;
+        const Window& other = windows_[s];
+        if (other.origin != w.origin || std::abs(other.sigma - w.sigma) > source_tolerance ||
+            (other.source() - w.source()).norm() > source_tolerance)
+            continue;
+        if (other.b0 > b1 + gap_tolerance || other.b1 < b0 - gap_tolerance) continue;
+        window_state_[s] = k_merged;
+        pieces.push_back(s);
+        b0 = std::min(b0, other.b0);
+        b1 = std::max(b1, other.b1);
+    }
+    if (pieces.size() == 1) return id;
+    const int merged = static_cast<int>(windows_.size());
+    Window m = w;
+    m.b0 = b0;
+    m.b1 = b1;
+    m.parent = -2 - static_cast<int>(merged_pieces_.size());
+    m.next_on_edge = first_window_[w.halfedge];
+    merged_pieces_.push_back(static_cast<int>(pieces.size()));
+    merged_pieces_.insert(merged_pieces_.end(), pieces.begin(), pieces.end());
+    first_window_[w.halfedge] = merged;
+    windows_.push_back(m);
+    window_state_.push_back(k_propagated);
+    stats_.windows_merged += pieces.size() - 1;
+    return merged;
+}
+
+int ExactGeodesic::Impl::piece_covering(int id, double x) const {
+    const int offset = -2 - windows_[id].parent;
+    const int count = merged_pieces_[offset];
+    int best = merged_pieces_[offset + 1];
+    double best_gap = k_infinity;
+    for (int i = 0; i < count; ++i) {
+        const int piece = merged_pieces_[offset + 1 + i];
+        const Window& p = windows_[piece];
+        const double gap = std::max({p.b0 - x, x - p.b1, 0.0});
+        if (gap < best_gap) {
+            best_gap = gap;
+            best = piece;
+        }
+    }
+    return best;
+}
+
+void ExactGeodesic::Impl::propagate_window(int popped) {
+    if (window_state_[popped] != k_pending) return;  // merged into another window
+    window_state_[popped] = k_propagated;
+    if (!trim_by_end_vertices(windows_[popped]) || !trim_by_other_windows(windows_[popped], popped)) {
         ++stats_.windows_pruned;
         return;
     }
+    const int id = merge_with_siblings(popped);
     const Window w = windows_[id];  // a copy: adding children may reallocate windows_
     ++stats_.windows_propagated;
     // A source beyond the edge line sends no ray into the face. One on the line (a vertex emitting across a
@@ -660,7 +738,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     }
     if (!stats_.stopped_early && !stops_.empty()) all_stops_settled(k_infinity);
     if (std::isfinite(max_distance_)) settled_radius_ = std::min(settled_radius_, max_distance_);
-    stats_.window_bytes = windows_.capacity() * sizeof(Window);
+    stats_.window_bytes = windows_.capacity() * (sizeof(Window) + 1) + merged_pieces_.capacity() * sizeof(int);
 }
 
 double ExactGeodesic::Impl::vertex_distance(int v) const {
@@ -720,6 +798,7 @@ std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint&
             continue;
         }
         // via == Via::window: `position` is in the frame of the window's halfedge, on the face side.
+        if (windows_[id].parent <= -2) id = piece_covering(id, windows_[id].crossing_of(position));
         const Window& w = windows_[id];
         const int h = w.halfedge;
         // A vertex within k_cover of the window's end took its distance from the straight ray to it, which may

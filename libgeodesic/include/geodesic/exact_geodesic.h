@@ -25,6 +25,7 @@ struct PropagationStats {
     std::size_t windows_created = 0;     ///< windows that entered the queue
     std::size_t windows_propagated = 0;  ///< windows carried across a face
     std::size_t windows_pruned = 0;      ///< windows dropped as dominated by a vertex
+    std::size_t windows_merged = 0;      ///< fragments of one ray family merged before crossing a face
     std::size_t vertex_emissions = 0;    ///< saddle, boundary or source vertices that emitted windows
     std::size_t queue_pushes = 0;
     std::size_t queue_pops = 0;
