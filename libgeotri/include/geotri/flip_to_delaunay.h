@@ -1,0 +1,86 @@
+#pragma once
+// Flips that make G valid (untangling) and then well shaped (geodesic Delaunay), as geotri-flip does (issue 4).
+
+#include <geotri/flip.h>
+#include <geotri/geodesic_triangulation.h>
+#include <geotri/validate.h>
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace geotri {
+
+/// When improve flips an edge.
+enum class FlipCriterion {
+    angle,   ///< when the flip strictly raises the minimum corner angle of the two triangles
+    length,  ///< intrinsic Delaunay on geodesic lengths: when the opposite angles by the law of cosines sum to > π
+};
+
+/// "angle" or "length".
+const char* to_string(FlipCriterion criterion);
+
+struct FlipToDelaunayOptions {
+    FlipCriterion criterion = FlipCriterion::angle;
+    bool untangle = true;
+    bool improve = true;
+    /// Strict improvement: a flip must raise the minimum corner angle by more than this (criterion angle), or the
+    /// opposite angles must sum to more than π plus this (criterion length). Radians.
+    double margin = 1e-9;
+    int max_improve_passes = 100;    ///< sweeps over every edge; improve stops after a sweep without a flip
+    int max_untangle_flips = 10000;  ///< each one strictly lowers the violation count, so this is only a guard
+    /// Improve: when the shortest c-d geodesic leaves the two patches, try the shortest path inside them.
+    bool region_fallback = true;
+    int threads = 0;  ///< for improve's evaluations; 0: as many as OpenMP likes. The result is the same for any count
+    /// Called after each untangle round and each improve sweep with a line saying where it is.
+    std::function<void(const std::string&)> progress;
+};
+
+/// Minimum, mean and maximum coarse corner angle, in degrees, over every corner of every face.
+struct CornerAngleStats {
+    double min_deg = 0.0, mean_deg = 0.0, max_deg = 0.0;
+    int corners = 0;
+};
+
+/// Every corner of G (corner_angles() of every face). Throws as corner_angle().
+CornerAngleStats corner_angle_stats(const GeodesicTriangulation& g);
+
+struct FlipToDelaunayResult {
+    bool valid_before = false, valid_after = false;
+    std::array<int, 4> violations_before{}, violations_after{};  ///< per condition, as validate() counts them
+    std::vector<Violation> remaining;  ///< the violations left when G is still invalid
+
+    int untangle_flips = 0;      ///< flips that strictly lowered the violation count
+    int untangle_rejected = 0;   ///< flips tried while untangling that did not lower it (G kept as it was)
+    int untangle_refused = 0;    ///< not flippable, or no c-d geodesic
+    bool untangle_stuck = false; ///< untangling ended with violations left and no flip that lowers their count
+
+    int improve_flips = 0;
+    int improve_plans = 0;          ///< flips computed (one propagation each) while improving
+    int improve_region_flips = 0;   ///< of improve_flips, those whose new edge is the shortest path inside the patches
+    int improve_passes = 0;
+    /// Flips that the criterion asked for but plan_flip() refused, by FlipRefusal (index = enum value), with the
+    /// shortest geodesic and then with the shortest path inside the patches (the reason counted is the first).
+    std::array<int, 5> improve_refused{};
+    bool improve_skipped = false;   ///< G was not valid after untangling, so it was not improved
+    bool pass_cap_reached = false;  ///< improve stopped at max_improve_passes with flips still happening
+    bool improve_reverted = false;  ///< the final check found G invalid after improving: the G before it is kept
+
+    CornerAngleStats angles_before, angles_after;
+    double seconds = 0.0;
+};
+
+/// Untangles G, then improves it (as options say). Untangle: while G is invalid, flip one at a time the edges
+/// involved in violations (named by validate(), or at a vertex or face it names), keeping a flip only when it
+/// strictly lowers the number of violations (without raising that of conditions 1-3); it stops when G is valid
+/// or no such flip is left. Improve (only on a valid G): sweeps
+/// over the edges, flipping by the criterion with plan_flip()'s local checks, until a sweep makes no
+/// flip or max_improve_passes is reached; it terminates because each flip strictly improves a finite order
+/// (criterion angle: the sorted vector of all corner angles), and it never makes a valid G invalid (a final
+/// validate() with the overlay; if that fails, G goes back to what it was before improving). Deterministic:
+/// improve evaluates edges in parallel but flips in edge index order, so the result is the same for any thread
+/// count; untangle is sequential. Preconditions: every edge traced. Throws InvalidInput for a malformed G.
+FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDelaunayOptions& options = {});
+
+}  // namespace geotri

@@ -1,0 +1,337 @@
+#include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
+#include <geotri/flip_to_delaunay.h>
+#include <geotri/overlay.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <set>
+#include <utility>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace geotri {
+
+using OpenMesh::EdgeHandle;
+using OpenMesh::HalfedgeHandle;
+
+namespace {
+
+constexpr double k_pi = 3.14159265358979323846;
+constexpr double k_degrees = 180.0 / k_pi;
+
+int total(const ValidationReport& r) { return static_cast<int>(r.violations.size()); }
+
+/// The coarse edges that a flip might mend: those that the violations name, and those at the vertices and faces
+/// that they name. Sorted, so that untangling is deterministic.
+std::vector<int> candidate_edges(const CoarseMesh& coarse, const ValidationReport& report) {
+    std::set<int> edges;
+    for (const Violation& v : report.violations) {
+        edges.insert(v.coarse_edges.begin(), v.coarse_edges.end());
+        for (int c : v.coarse_vertices)
+            for (EdgeHandle e : coarse.ve_range(OpenMesh::VertexHandle(c))) edges.insert(e.idx());
+        for (int f : v.coarse_faces)
+            for (EdgeHandle e : coarse.fe_range(OpenMesh::FaceHandle(f))) edges.insert(e.idx());
+    }
+    return {edges.begin(), edges.end()};
+}
+
+/// The angle opposite side `opposite` in a triangle with sides `opposite`, `s`, `t` (law of cosines), clamped for
+/// side lengths that break the triangle inequality by rounding.
+double opposite_angle(double opposite, double s, double t) {
+    const double cosine = (s * s + t * t - opposite * opposite) / (2.0 * s * t);
+    return std::acos(std::clamp(cosine, -1.0, 1.0));
+}
+
+/// What one edge's evaluation found: a flip to do, or a refusal to count.
+struct Evaluation {
+    bool flip = false;
+    bool planned = false;      ///< plan_flip() was called
+    bool wants_region = false; ///< the criterion asks for the flip, but the shortest geodesic leaves the patches
+    double before = 0.0;       ///< the criterion's figure for the edge as it is (minimum angle, or opposite sum)
+    FlipPlan plan;
+    FlipRefusal refused = FlipRefusal::none;
+};
+
+/// Improve, in sweeps. Each sweep evaluates (in parallel: G is only read) every edge whose two faces changed since
+/// its last evaluation, then the flips whose shortest geodesic left the two patches once more with the shortest
+/// path inside them (one overlay for all of them), then does the flips it found in edge index order, skipping
+/// those whose faces an earlier flip of the same sweep changed (they are evaluated again in the next sweep). The
+/// result does not depend on the thread count.
+class Improver {
+public:
+    Improver(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result)
+        : g_(g), options_(options), result_(result), dirty_(g.coarse().n_edges(), 1) {}
+
+    /// One sweep; returns the number of flips.
+    int sweep() {
+        const CoarseMesh& coarse = g_.coarse();
+        std::vector<int> edges;
+        for (std::size_t i = 0; i < dirty_.size(); ++i) {
+            if (!dirty_[i]) continue;
+            dirty_[i] = 0;
+            const EdgeHandle e(static_cast<int>(i));
+            if (coarse.status(e).deleted() || coarse.is_boundary(e) || !coarse.is_flip_ok(e)) continue;
+            edges.push_back(static_cast<int>(i));
+        }
+        std::vector<Evaluation> found(edges.size());
+        for_each_parallel(edges.size(), [&](std::size_t k, geodesic::ExactGeodesic& propagation) {
+            found[k] = evaluate(EdgeHandle(edges[k]), propagation);
+        });
+        std::vector<std::size_t> again;
+        for (std::size_t k = 0; k < found.size(); ++k)
+            if (found[k].wants_region) again.push_back(k);
+        if (!again.empty()) {
+            const Overlay overlay = build_overlay(g_);
+            for_each_parallel(again.size(), [&](std::size_t i, geodesic::ExactGeodesic&) {
+                Evaluation& x = found[again[i]];
+                FlipPlan inside = plan_flip_in_region(g_, EdgeHandle(edges[again[i]]), overlay);
+                if (!inside.accepted()) return;
+                x.plan = std::move(inside);
+                x.refused = FlipRefusal::none;
+                x.flip = better(x.before, x.plan);
+            });
+        }
+
+        std::vector<unsigned char> touched(coarse.n_edges(), 0);
+        int flips = 0;
+        for (std::size_t k = 0; k < found.size(); ++k) {
+            if (found[k].planned) ++result_.improve_plans;
+            if (found[k].refused != FlipRefusal::none)
+                ++result_.improve_refused[static_cast<std::size_t>(found[k].refused)];
+            if (!found[k].flip) continue;
+            const std::array<int, 5> quad = quad_edges(EdgeHandle(edges[k]));
+            if (std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[static_cast<std::size_t>(x)] != 0; })) {
+                dirty_[static_cast<std::size_t>(edges[k])] = 1;
+                continue;
+            }
+            apply_flip(g_, found[k].plan);
+            ++flips;
+            if (found[k].plan.in_region) ++result_.improve_region_flips;
+            for (int x : quad) touched[static_cast<std::size_t>(x)] = dirty_[static_cast<std::size_t>(x)] = 1;
+        }
+        return flips;
+    }
+
+private:
+    /// Calls work(k, propagation) for k in [0, n), in parallel, with one propagation object per thread; rethrows
+    /// the first exception (in k order) after the loop.
+    template <class Work>
+    void for_each_parallel(std::size_t n, Work work) const {
+        std::vector<std::exception_ptr> errors(n);
+        const long count = static_cast<long>(n);
+#ifdef _OPENMP
+        const int threads = options_.threads > 0 ? options_.threads : omp_get_max_threads();
+#pragma omp parallel num_threads(threads)
+#endif
+        {
+            std::unique_ptr<geodesic::ExactGeodesic> propagation;  // one per thread, reused across edges
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 1)
+#endif
+            for (long i = 0; i < count; ++i) {
+                const std::size_t k = static_cast<std::size_t>(i);
+                try {
+                    if (!propagation) propagation = std::make_unique<geodesic::ExactGeodesic>(g_.fine().mesh);
+                    work(k, *propagation);
+                } catch (...) {
+                    errors[k] = std::current_exception();
+                }
+            }
+        }
+        for (const std::exception_ptr& e : errors)
+            if (e) std::rethrow_exception(e);
+    }
+
+    /// e and the four other edges of its two faces: the edges whose faces a flip of e changes.
+    std::array<int, 5> quad_edges(EdgeHandle e) const {
+        const CoarseMesh& coarse = g_.coarse();
+        const HalfedgeHandle ab = coarse.halfedge_handle(e, 0), ba = coarse.halfedge_handle(e, 1);
+        return {e.idx(), coarse.edge_handle(coarse.next_halfedge_handle(ab)).idx(),
+                coarse.edge_handle(coarse.prev_halfedge_handle(ab)).idx(),
+                coarse.edge_handle(coarse.next_halfedge_handle(ba)).idx(),
+                coarse.edge_handle(coarse.prev_halfedge_handle(ba)).idx()};
+    }
+
+    /// Whether the accepted plan is a strict improvement on `before` by the criterion.
+    bool better(double before, const FlipPlan& plan) const {
+        if (options_.criterion == FlipCriterion::angle)
+            return *std::min_element(plan.corners.begin(), plan.corners.end()) > before + options_.margin;
+        // The new edge must be more Delaunay than the old one, so that it is never flipped straight back.
+        const CoarseMesh& coarse = g_.coarse();
+        const HalfedgeHandle ab = coarse.halfedge_handle(plan.edge, 0), ba = coarse.halfedge_handle(plan.edge, 1);
+        const double l_bc = g_.length(coarse.edge_handle(coarse.next_halfedge_handle(ab)));
+        const double l_ca = g_.length(coarse.edge_handle(coarse.prev_halfedge_handle(ab)));
+        const double l_ad = g_.length(coarse.edge_handle(coarse.next_halfedge_handle(ba)));
+        const double l_db = g_.length(coarse.edge_handle(coarse.prev_halfedge_handle(ba)));
+        return opposite_angle(plan.length, l_ad, l_ca) + opposite_angle(plan.length, l_bc, l_db) < before;
+    }
+
+    Evaluation evaluate(EdgeHandle e, geodesic::ExactGeodesic& propagation) const {
+        const CoarseMesh& coarse = g_.coarse();
+        const HalfedgeHandle ab = coarse.halfedge_handle(e, 0), ba = coarse.halfedge_handle(e, 1);
+        const HalfedgeHandle bc = coarse.next_halfedge_handle(ab), ca = coarse.next_halfedge_handle(bc);
+        const HalfedgeHandle ad = coarse.next_halfedge_handle(ba), db = coarse.next_halfedge_handle(ad);
+        Evaluation result;
+        if (options_.criterion == FlipCriterion::angle) {
+            const double at_a = corner_angle(g_, ab), at_b = corner_angle(g_, bc), at_c = corner_angle(g_, ca);
+            const double at_b2 = corner_angle(g_, ba), at_a2 = corner_angle(g_, ad), at_d = corner_angle(g_, db);
+            result.before = std::min({at_a, at_b, at_c, at_b2, at_a2, at_d});
+            // No flip can beat this: the corners at a and b merge, and those at c and d are split in two.
+            const double bound = std::min({at_a + at_a2, at_b + at_b2, 0.5 * at_c, 0.5 * at_d});
+            if (!(bound > result.before + options_.margin)) return result;
+        } else {
+            const double l_ab = g_.length(e), l_bc = g_.length(coarse.edge_handle(bc));
+            const double l_ca = g_.length(coarse.edge_handle(ca)), l_ad = g_.length(coarse.edge_handle(ad));
+            const double l_db = g_.length(coarse.edge_handle(db));
+            result.before = opposite_angle(l_ab, l_bc, l_ca) + opposite_angle(l_ab, l_ad, l_db);
+            if (!(result.before > k_pi + options_.margin)) return result;
+        }
+        FlipOptions flip_options;
+        flip_options.propagation = &propagation;
+        flip_options.region_fallback = false;  // done for all such edges at once, with one overlay
+        result.plan = plan_flip(g_, e, flip_options);
+        result.planned = true;
+        if (!result.plan.accepted()) {
+            result.refused = result.plan.refusal;
+            result.wants_region = options_.region_fallback && (result.refused == FlipRefusal::bad_corner ||
+                                                               result.refused == FlipRefusal::leaves_region);
+            return result;
+        }
+        result.flip = better(result.before, result.plan);
+        return result;
+    }
+
+    GeodesicTriangulation& g_;
+    const FlipToDelaunayOptions& options_;
+    FlipToDelaunayResult& result_;
+    std::vector<unsigned char> dirty_;  ///< per edge: its faces changed since it was last evaluated
+};
+
+/// Violations of conditions 1-3 (the cheap ones, without the overlay).
+int cheap_count(const ValidationReport& r) { return r.violation_count[0] + r.violation_count[1] + r.violation_count[2]; }
+
+/// Untangles by single flips while they strictly lower the number of violations (and do not raise that of
+/// conditions 1-3), which bounds the number of flips. `report` is validate(g) on entry and on exit.
+void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
+              ValidationReport& report) {
+    ValidationOptions cheap;
+    cheap.overlay = false;
+    geodesic::ExactGeodesic propagation(g.fine().mesh);
+    FlipOptions flip_options;
+    flip_options.check_validity = false;
+    flip_options.propagation = &propagation;
+    int round = 0;
+    while (!report.valid && result.untangle_flips < options.max_untangle_flips) {
+        ++round;
+        bool improved = false;
+        for (int index : candidate_edges(g.coarse(), report)) {
+            const EdgeHandle e(index);
+            if (g.coarse().is_boundary(e) || !g.coarse().is_flip_ok(e)) continue;
+            GeodesicTriangulation trial = g;
+            const FlipPlan plan = flip(trial, e, flip_options);
+            if (!plan.accepted()) {
+                ++result.untangle_refused;
+                continue;
+            }
+            // The overlay (condition 4) costs more than conditions 1-3: build it only when they do not decide.
+            const int cheap_after = cheap_count(validate(trial, cheap));
+            if (cheap_after > cheap_count(report)) {
+                ++result.untangle_rejected;
+                continue;
+            }
+            ValidationReport after = validate(trial);
+            if (total(after) < total(report)) {
+                g = std::move(trial);
+                report = std::move(after);
+                ++result.untangle_flips;
+                improved = true;
+                break;
+            }
+            ++result.untangle_rejected;
+        }
+        if (!improved) {
+            result.untangle_stuck = true;
+            break;
+        }
+        if (options.progress)
+            options.progress("untangle round " + std::to_string(round) + ": " + std::to_string(total(report)) +
+                             " violations left");
+    }
+}
+
+}  // namespace
+
+const char* to_string(FlipCriterion criterion) { return criterion == FlipCriterion::angle ? "angle" : "length"; }
+
+CornerAngleStats corner_angle_stats(const GeodesicTriangulation& g) {
+    CornerAngleStats stats;
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0, sum = 0.0;
+    for (OpenMesh::FaceHandle f : g.coarse().faces()) {
+        for (double angle : corner_angles(g, f)) {
+            lo = std::min(lo, angle);
+            hi = std::max(hi, angle);
+            sum += angle;
+            ++stats.corners;
+        }
+    }
+    if (stats.corners > 0) {
+        stats.min_deg = lo * k_degrees;
+        stats.max_deg = hi * k_degrees;
+        stats.mean_deg = sum / stats.corners * k_degrees;
+    }
+    return stats;
+}
+
+FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDelaunayOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    FlipToDelaunayResult result;
+    ValidationReport report = validate(g);
+    result.valid_before = report.valid;
+    result.violations_before = report.violation_count;
+    result.angles_before = corner_angle_stats(g);
+
+    if (options.untangle && !report.valid) untangle(g, options, result, report);
+
+    if (options.improve) {
+        if (!report.valid) {
+            result.improve_skipped = true;
+        } else {
+            const GeodesicTriangulation before = g;
+            Improver improver(g, options, result);
+            int flips = 0;
+            do {
+                flips = improver.sweep();
+                ++result.improve_passes;
+                result.improve_flips += flips;
+                if (options.progress)
+                    options.progress("improve sweep " + std::to_string(result.improve_passes) + ": " +
+                                     std::to_string(flips) + " flips");
+            } while (flips > 0 && result.improve_passes < options.max_improve_passes);
+            result.pass_cap_reached = flips > 0;
+            if (result.improve_flips > 0) {
+                report = validate(g);
+                if (!report.valid) {
+                    g = before;
+                    report = validate(g);
+                    result.improve_reverted = true;
+                }
+            }
+        }
+    }
+
+    result.valid_after = report.valid;
+    result.violations_after = report.violation_count;
+    if (!report.valid) result.remaining = report.violations;
+    result.angles_after = corner_angle_stats(g);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace geotri

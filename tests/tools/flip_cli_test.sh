@@ -1,0 +1,236 @@
+#!/usr/bin/env bash
+# Command-line tests of geotri-flip: the real binary, its exit codes (0 valid output, 3 written but invalid, 1 bad
+# input, 2 usage), its summary and its output. The .gtri inputs are made by the real geotri-decimate and
+# geotri-trace, and the outputs are judged by the real geotri-check.
+#
+#   flip_cli_test.sh TOOLS_DIR TEST_DATA_DIR CASE
+#
+# Each CASE runs in a fresh temporary folder and exits 0 when it passes. ctest registers one test per case.
+
+set -u
+
+tools=$1
+data=$2
+case_name=$3
+bin=$tools/geotri-flip
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/geotri_flip_${case_name}.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+
+tripod=$data/cad/tripod.off                  # genus 0: its coarsest G (a tetrahedron) is valid
+femur=$data/anatomy/femur_thing157696.stl    # at 320 faces, its traced G is invalid and flips make it valid
+
+fail() {
+    echo "FAIL ($case_name): $*" >&2
+    for f in stdout stderr; do
+        if [ -s "$f" ]; then
+            echo "--- $f:" >&2
+            head -c 3000 "$f" >&2
+        fi
+    done
+    exit 1
+}
+
+run() {
+    "$bin" "$@" >stdout 2>stderr
+    rc=$?
+}
+
+expect_rc() {
+    [ "$rc" -eq "$1" ] || fail "exit code $rc, expected $1"
+}
+
+# expect_error TEXT: exit 1, one line on stderr that starts with the program's prefix and holds TEXT.
+expect_error() {
+    expect_rc 1
+    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
+    grep -q "^geotri-flip: error: " stderr || fail "stderr does not start with 'geotri-flip: error: '"
+    grep -q -- "$1" stderr || fail "stderr does not mention '$1'"
+    [ ! -s stdout ] || fail "stdout is not empty"
+}
+
+expect_usage_error() {
+    expect_rc 2
+    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
+    grep -q "^geotri-flip: error: " stderr || fail "stderr does not start with 'geotri-flip: error: '"
+}
+
+# Nothing but the inputs (in_*) and the logs is left (no output, no temporary file).
+expect_no_output() {
+    local extra
+    extra=$(ls -A | grep -v -x -e stdout -e stderr -e 'in_.*')
+    [ -z "$extra" ] || fail "files left behind: $extra"
+}
+
+check() {
+    "$tools/geotri-check" "$1" --quiet
+}
+
+json_value() {
+    sed -n 's/.*"'"$1"'": *\([^,}]*\).*/\1/p' stdout | tr -d '"'
+}
+
+# make_gtri MESH DECIMATE_OPTIONS...: in_g.gtri, MESH decimated and traced (the fine mesh copied next to it).
+make_gtri() {
+    local mesh=$1
+    shift
+    cp "$mesh" "in_$(basename "$mesh")" || fail "cannot copy $mesh"
+    "$tools/geotri-decimate" "in_$(basename "$mesh")" -o in_coarse.off "$@" --quiet || fail "geotri-decimate failed"
+    "$tools/geotri-trace" "in_$(basename "$mesh")" in_coarse.off -o in_g.gtri --quiet || fail "geotri-trace failed"
+}
+
+case "$case_name" in
+
+help_lists_every_option)
+    run --help
+    expect_rc 0
+    for option in IN --output --criterion --fine --json --quiet --threads --version --help; do
+        grep -q -- "$option" stdout || fail "--help does not mention $option"
+    done
+    ;;
+
+version)
+    run --version
+    expect_rc 0
+    grep -q -E '^geotri-flip [0-9]+\.[0-9]+' stdout || fail "no version on stdout"
+    ;;
+
+usage_no_arguments)
+    run
+    expect_usage_error
+    ;;
+
+usage_missing_output)
+    make_gtri "$tripod" --coarsest
+    run in_g.gtri
+    expect_usage_error
+    expect_no_output
+    ;;
+
+usage_bad_output_extension)
+    make_gtri "$tripod" --coarsest
+    run in_g.gtri -o out.off
+    expect_usage_error
+    grep -q "gtri" stderr || fail "message does not say .gtri"
+    expect_no_output
+    ;;
+
+usage_bad_criterion)
+    make_gtri "$tripod" --coarsest
+    run in_g.gtri -o out.gtri --criterion delaunay
+    expect_usage_error
+    grep -q "criterion" stderr || fail "message does not name --criterion"
+    expect_no_output
+    ;;
+
+usage_missing_input_file)
+    run in_nothing.gtri -o out.gtri
+    expect_usage_error
+    grep -q "in_nothing.gtri" stderr || fail "message does not name the file"
+    expect_no_output
+    ;;
+
+valid_g_stays_valid)
+    make_gtri "$tripod" --faces 20
+    check in_g.gtri || fail "the traced tripod is not valid to begin with"
+    run in_g.gtri -o out.gtri
+    expect_rc 0
+    [ ! -s stdout ] || fail "stdout is not empty without --json"
+    check out.gtri || fail "geotri-check finds out.gtri invalid"
+    grep -q "corner angles before: min" stderr || fail "no angles before on stderr"
+    grep -q "corner angles after:  min" stderr || fail "no angles after on stderr"
+    grep -q "after: valid" stderr || fail "stderr does not say valid"
+    ;;
+
+untangles_an_invalid_g)
+    make_gtri "$femur" --faces 320
+    check in_g.gtri && fail "the traced femur is valid: this case needs an invalid one"
+    run in_g.gtri -o out.gtri --json --quiet
+    expect_rc 0
+    [ ! -s stderr ] || fail "stderr is not empty with --quiet"
+    [ "$(json_value valid_before)" = "false" ] || fail "valid_before is not false"
+    [ "$(json_value valid)" = "true" ] || fail "valid is not true"
+    [ "$(json_value untangle_flips)" -gt 0 ] || fail "no untangle flips counted"
+    check out.gtri || fail "geotri-check finds out.gtri invalid"
+    ;;
+
+json_summary_and_angles)
+    make_gtri "$tripod" --faces 20
+    run in_g.gtri -o out.gtri --json --quiet
+    expect_rc 0
+    [ "$(wc -l <stdout)" -eq 1 ] || fail "the JSON summary is not one line"
+    for key in valid_before valid improve_flips untangle_flips refused_bad_corner refused_leaves_region \
+               min_corner_angle_deg_before min_corner_angle_deg mean_corner_angle_deg max_corner_angle_deg; do
+        grep -q "\"$key\"" stdout || fail "no $key in the summary"
+    done
+    awk -v a="$(json_value min_corner_angle_deg_before)" -v b="$(json_value min_corner_angle_deg)" \
+        'BEGIN { exit !(b >= a) }' || fail "the minimum corner angle went down"
+    ;;
+
+length_criterion)
+    make_gtri "$tripod" --faces 20
+    run in_g.gtri -o out.gtri --criterion length --json --quiet
+    expect_rc 0
+    [ "$(json_value criterion)" = "length" ] || fail "criterion is not length"
+    check out.gtri || fail "geotri-check finds out.gtri invalid"
+    ;;
+
+threads_give_identical_files)
+    make_gtri "$femur" --faces 320
+    "$bin" in_g.gtri -o one.gtri --threads 1 --quiet
+    "$bin" in_g.gtri -o two.gtri --threads 2 --quiet
+    cmp -s one.gtri two.gtri || fail "1 and 2 threads give different files"
+    ;;
+
+still_invalid_exits_three_and_is_written)
+    # The coarsest tripod turned inside out: every patch is on the wrong side, and no flip can mend that.
+    cp "$tripod" in_tripod.off
+    "$tools/geotri-decimate" in_tripod.off -o in_coarse.off --coarsest --quiet || fail "geotri-decimate failed"
+    awk '$1 == 3 && NF == 4 { print 3, $2, $4, $3; next } { print }' in_coarse.off >in_turned.off
+    "$tools/geotri-trace" in_tripod.off in_turned.off -o in_g.gtri --quiet || fail "geotri-trace failed"
+    run in_g.gtri -o out.gtri
+    expect_rc 3
+    [ -s out.gtri ] || fail "out.gtri is not written"
+    grep -q "still invalid" stderr || fail "stderr does not say that the output is still invalid"
+    check out.gtri
+    [ $? -eq 3 ] || fail "geotri-check does not find out.gtri invalid"
+    ;;
+
+error_empty_gtri)
+    : >in_empty.gtri
+    run in_empty.gtri -o out.gtri
+    expect_error "in_empty.gtri"
+    expect_no_output
+    ;;
+
+error_truncated_gtri)
+    make_gtri "$tripod" --coarsest
+    head -c 200 in_g.gtri >in_cut.gtri
+    run in_cut.gtri -o out.gtri
+    expect_error "in_cut.gtri"
+    expect_no_output
+    ;;
+
+error_unwritable_output)
+    make_gtri "$tripod" --coarsest
+    run in_g.gtri -o no_such_folder/out.gtri
+    expect_error "no_such_folder/out.gtri"
+    expect_no_output
+    ;;
+
+failure_keeps_the_old_output)
+    make_gtri "$tripod" --coarsest
+    echo "old" >in_out.gtri
+    : >in_empty.gtri
+    run in_empty.gtri -o in_out.gtri
+    expect_rc 1
+    [ "$(cat in_out.gtri)" = "old" ] || fail "the old output was changed"
+    expect_no_output
+    ;;
+
+*)
+    fail "unknown case"
+    ;;
+esac
+exit 0

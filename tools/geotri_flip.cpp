@@ -1,0 +1,163 @@
+// geotri-flip: makes a geodesic triangulation valid by flips (untangle), then flips it towards geodesic Delaunay
+// (improve), and writes the result (issue 4).
+//
+//   geotri-flip IN.gtri -o OUT.gtri [--criterion angle|length] [--fine PATH] [--threads N] [--quiet] [--json]
+//
+// Exit codes: 0 when OUT is valid, 3 when OUT is written but still invalid, 1 bad input, 2 usage error.
+
+#include "output.h"
+#include "progress.h"
+#include "tool.h"
+
+#include <geodesic/errors.h>
+#include <geotri/flip_to_delaunay.h>
+#include <geotri/gtri_io.h>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+namespace {
+
+namespace tools = geotri::tools;
+
+constexpr int k_exit_invalid = 3;
+
+std::string counts(const std::array<int, 4>& c) {
+    std::string s;
+    for (std::size_t i = 0; i < 4; ++i)
+        s += std::string(i ? ", " : "") + "condition " + std::to_string(i + 1) + ": " + std::to_string(c[i]);
+    return s;
+}
+
+int total(const std::array<int, 4>& c) { return c[0] + c[1] + c[2] + c[3]; }
+
+int run(tools::Tool& tool) {
+    CLI::App& app = tool.app;
+    app.description("Makes a geodesic triangulation (.gtri) valid by edge flips (untangle), then flips edges while\n"
+                    "that improves the triangles (geodesic Delaunay), and writes the result. Every new edge is an\n"
+                    "exact shortest geodesic. Exit code 0 if the result is valid, 3 if it is written but invalid.");
+    std::string input, output, fine_override, criterion_name = "angle";
+    app.add_option("IN", input, "The geodesic triangulation: .gtri")->required()->check(CLI::ExistingFile);
+    app.add_option("-o,--output", output, "The flipped geodesic triangulation: .gtri")
+        ->required()
+        ->check(CLI::Validator(
+            [](std::string& path) -> std::string {
+                return tools::extension_of(path) == ".gtri" ? std::string() : "'" + path + "' should end in .gtri";
+            },
+            ""));
+    app.add_option("--criterion", criterion_name,
+                   "angle: flip when that raises the minimum corner angle of the two triangles (default);\n"
+                   "length: intrinsic Delaunay on the geodesic edge lengths")
+        ->check(CLI::IsMember({"angle", "length"}));
+    app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
+        ->check(CLI::ExistingFile);
+    tool.parse();
+
+    tools::Progress progress(tool.program(), tool.verbose());
+    progress.stage("loading " + input);
+    const double load_start = tools::now_seconds();
+    geotri::GeodesicTriangulation g = geotri::read_gtri(input, fine_override);
+    const double load_seconds = tools::now_seconds() - load_start;
+
+    geotri::FlipToDelaunayOptions options;
+    options.threads = tool.common.threads;
+    options.criterion = criterion_name == "length" ? geotri::FlipCriterion::length : geotri::FlipCriterion::angle;
+    options.progress = [&progress](const std::string& where) { progress.stage(where); };
+    progress.stage("flipping");
+    geotri::FlipToDelaunayResult r;
+    try {
+        r = geotri::flip_to_delaunay(g, options);
+    } catch (const geotri::InvalidInput& e) {
+        throw geotri::InvalidInput(input + ": " + e.what());
+    }
+
+    progress.stage("writing " + output);
+    const double write_start = tools::now_seconds();
+    geotri::write_gtri(output, g);
+    const double write_seconds = tools::now_seconds() - write_start;
+    progress.clear();
+
+    int refused = 0;
+    for (int n : r.improve_refused) refused += n;
+    if (tool.common.json) {
+        tools::JsonSummary summary;
+        summary.add("input", input);
+        summary.add("output", output);
+        summary.add("criterion", criterion_name);
+        summary.add("vertices", g.coarse().n_vertices());
+        summary.add("edges", g.coarse().n_edges());
+        summary.add("faces", g.coarse().n_faces());
+        summary.add("valid_before", r.valid_before);
+        summary.add("valid", r.valid_after);
+        for (std::size_t c = 0; c < 4; ++c) {
+            summary.add("condition_" + std::to_string(c + 1) + "_before", r.violations_before[c]);
+            summary.add("condition_" + std::to_string(c + 1), r.violations_after[c]);
+        }
+        summary.add("untangle_flips", r.untangle_flips);
+        summary.add("untangle_rejected", r.untangle_rejected);
+        summary.add("untangle_refused", r.untangle_refused);
+        summary.add("untangle_stuck", r.untangle_stuck);
+        summary.add("improve_flips", r.improve_flips);
+        summary.add("improve_passes", r.improve_passes);
+        summary.add("improve_plans", r.improve_plans);
+        summary.add("improve_region_flips", r.improve_region_flips);
+        for (int k = 1; k < 5; ++k) {
+            std::string key = geotri::to_string(static_cast<geotri::FlipRefusal>(k));
+            for (char& ch : key)
+                if (ch == ' ') ch = '_';
+            summary.add("refused_" + key, r.improve_refused[static_cast<std::size_t>(k)]);
+        }
+        summary.add("improve_skipped", r.improve_skipped);
+        summary.add("pass_cap_reached", r.pass_cap_reached);
+        summary.add("improve_reverted", r.improve_reverted);
+        summary.add("min_corner_angle_deg_before", r.angles_before.min_deg);
+        summary.add("mean_corner_angle_deg_before", r.angles_before.mean_deg);
+        summary.add("max_corner_angle_deg_before", r.angles_before.max_deg);
+        summary.add("min_corner_angle_deg", r.angles_after.min_deg);
+        summary.add("mean_corner_angle_deg", r.angles_after.mean_deg);
+        summary.add("max_corner_angle_deg", r.angles_after.max_deg);
+        summary.add("load_seconds", load_seconds);
+        summary.add("flip_seconds", r.seconds);
+        summary.add("write_seconds", write_seconds);
+        std::printf("%s\n", summary.str().c_str());
+        std::fflush(stdout);
+    }
+    if (tool.verbose()) {
+        const char* program = tool.program().c_str();
+        std::fprintf(stderr, "%s: before: %s (%s)\n", program, r.valid_before ? "valid" : "INVALID",
+                     counts(r.violations_before).c_str());
+        std::fprintf(stderr, "%s: untangle: %d flips kept, %d tried and undone, %d not possible%s\n", program,
+                     r.untangle_flips, r.untangle_rejected, r.untangle_refused,
+                     r.untangle_stuck ? "; stuck: no flip lowers the violations left" : "");
+        if (r.improve_skipped) {
+            std::fprintf(stderr, "%s: improve: skipped, G is not valid\n", program);
+        } else {
+            std::fprintf(stderr, "%s: improve (%s): %d flips (%d inside the patches) in %d sweeps (%d computed)%s%s; %d refused (",
+                         program, criterion_name.c_str(), r.improve_flips, r.improve_region_flips, r.improve_passes,
+                         r.improve_plans,
+                         r.pass_cap_reached ? ", sweep cap reached" : "",
+                         r.improve_reverted ? ", UNDONE: the result was invalid" : "", refused);
+            for (int k = 1; k < 5; ++k)
+                std::fprintf(stderr, "%s%s %d", k > 1 ? ", " : "", geotri::to_string(static_cast<geotri::FlipRefusal>(k)),
+                             r.improve_refused[static_cast<std::size_t>(k)]);
+            std::fprintf(stderr, ")\n");
+        }
+        std::fprintf(stderr, "%s: corner angles before: min %.4g, mean %.4g, max %.4g degrees\n", program,
+                     r.angles_before.min_deg, r.angles_before.mean_deg, r.angles_before.max_deg);
+        std::fprintf(stderr, "%s: corner angles after:  min %.4g, mean %.4g, max %.4g degrees\n", program,
+                     r.angles_after.min_deg, r.angles_after.mean_deg, r.angles_after.max_deg);
+        std::fprintf(stderr, "%s: after: %s (%s); flipped in %.3f s\n", program, r.valid_after ? "valid" : "INVALID",
+                     counts(r.violations_after).c_str(), r.seconds);
+        if (!r.valid_after) {
+            std::fprintf(stderr, "%s: %s is written but still invalid: %d violation%s left, the first: %s\n", program,
+                         output.c_str(), total(r.violations_after), total(r.violations_after) == 1 ? "" : "s",
+                         r.remaining.empty() ? "?" : r.remaining.front().what.c_str());
+        }
+    }
+    return r.valid_after ? tools::k_exit_ok : k_exit_invalid;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return tools::run_tool("flip", argc, argv, run); }
