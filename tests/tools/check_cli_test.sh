@@ -12,48 +12,11 @@ tools=$1
 data=$2
 case_name=$3
 bin=$tools/geotri-check
-
-work=$(mktemp -d "${TMPDIR:-/tmp}/geotri_check_${case_name}.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+program=geotri-check
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 
 tripod=$data/cad/tripod.off   # 24 vertices, 44 faces, genus 0: its coarsest G (a tetrahedron) is valid
 cross=$data/cad/cross.off     # 40 vertices, 76 faces, genus 0
-
-fail() {
-    echo "FAIL ($case_name): $*" >&2
-    for f in stdout stderr; do
-        if [ -s "$f" ]; then
-            echo "--- $f:" >&2
-            head -c 3000 "$f" >&2
-        fi
-    done
-    exit 1
-}
-
-run() {
-    "$bin" "$@" >stdout 2>stderr
-    rc=$?
-}
-
-expect_rc() {
-    [ "$rc" -eq "$1" ] || fail "exit code $rc, expected $1"
-}
-
-# expect_error TEXT: exit 1, one line on stderr that starts with the program's prefix and holds TEXT.
-expect_error() {
-    expect_rc 1
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-check: error: " stderr || fail "stderr does not start with 'geotri-check: error: '"
-    grep -q -- "$1" stderr || fail "stderr does not mention '$1'"
-    [ ! -s stdout ] || fail "stdout is not empty"
-}
-
-expect_usage_error() {
-    expect_rc 2
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-check: error: " stderr || fail "stderr does not start with 'geotri-check: error: '"
-}
 
 # make_gtri MESH OUT: the coarsest G of MESH, traced, in OUT (with the fine mesh copied next to it).
 make_gtri() {
@@ -186,7 +149,7 @@ fine_override_finds_a_moved_mesh)
     make_gtri "$tripod" in_g.gtri
     mkdir elsewhere && mv in_g.gtri elsewhere/
     run elsewhere/in_g.gtri
-    expect_error "elsewhere/in_g.gtri"
+    expect_error_mentioning "elsewhere/in_g.gtri"
     run elsewhere/in_g.gtri --fine in_tripod.off
     expect_rc 0
     ;;
@@ -195,26 +158,26 @@ error_wrong_fine_mesh)
     make_gtri "$tripod" in_g.gtri
     cp "$cross" in_other.off
     run in_g.gtri --fine in_other.off
-    expect_error "in_"
+    expect_error_mentioning "in_"
     ;;
 
 error_empty_file)
     : >in_empty.gtri
     run in_empty.gtri
-    expect_error "in_empty.gtri"
+    expect_error_mentioning "in_empty.gtri"
     ;;
 
 error_truncated_file)
     make_gtri "$tripod" in_g.gtri
     head -c 300 in_g.gtri >in_cut.gtri
     run in_cut.gtri
-    expect_error "in_cut.gtri"
+    expect_error_mentioning "in_cut.gtri"
     ;;
 
 error_not_a_gtri)
     cp "$tripod" in_mesh.gtri
     run in_mesh.gtri
-    expect_error "in_mesh.gtri"
+    expect_error_mentioning "in_mesh.gtri"
     ;;
 
 *)

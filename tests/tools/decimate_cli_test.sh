@@ -10,55 +10,12 @@ set -u
 bin=$1
 data=$2
 case_name=$3
-
-work=$(mktemp -d "${TMPDIR:-/tmp}/geotri_decimate_${case_name}.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+program=geotri-decimate
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 
 bob=$data/classic/bob_small.ply      # 250 vertices, 500 faces, closed, genus 1
 tripod=$data/cad/tripod.off          # 24 vertices, 44 faces, genus 0
 femur=$data/anatomy/femur_thing157696.stl
-
-fail() {
-    echo "FAIL ($case_name): $*" >&2
-    for f in stdout stderr; do
-        if [ -s "$f" ]; then
-            echo "--- $f:" >&2
-            head -c 2000 "$f" >&2
-        fi
-    done
-    exit 1
-}
-
-run() {
-    "$bin" "$@" >stdout 2>stderr
-    rc=$?
-}
-
-expect_rc() {
-    [ "$rc" -eq "$1" ] || fail "exit code $rc, expected $1"
-}
-
-# expect_error FILE: exit 1, one line on stderr that names FILE, nothing on stdout.
-expect_error() {
-    expect_rc 1
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-decimate: error: $1: " stderr || fail "stderr does not start with 'geotri-decimate: error: $1: '"
-    [ ! -s stdout ] || fail "stdout is not empty"
-}
-
-expect_usage_error() {
-    expect_rc 2
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-decimate: error: " stderr || fail "stderr does not start with 'geotri-decimate: error: '"
-}
-
-# Nothing but the inputs is left in the folder (no output, no temporary file).
-expect_no_output() {
-    local extra
-    extra=$(ls -A | grep -v -x -e stdout -e stderr -e 'in_.*')
-    [ -z "$extra" ] || fail "files left behind: $extra"
-}
 
 # off_counts FILE: "VERTICES FACES" from an OFF header.
 off_counts() {
@@ -186,14 +143,14 @@ unreachable_target_says_so)
 error_empty_file)
     : >in_empty.off
     run in_empty.off -o out.off --faces 10
-    expect_error in_empty.off
+    expect_error_about in_empty.off
     expect_no_output
     ;;
 
 error_truncated_ply)
     head -c 5000 "$bob" >in_cut.ply
     run in_cut.ply -o out.off --faces 10
-    expect_error in_cut.ply
+    expect_error_about in_cut.ply
     grep -q "truncated" stderr || fail "message does not say truncated"
     expect_no_output
     ;;
@@ -201,7 +158,7 @@ error_truncated_ply)
 error_open_mesh)
     printf 'OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n' >in_open.off
     run in_open.off -o out.off --faces 2
-    expect_error in_open.off
+    expect_error_about in_open.off
     grep -q "not closed (3 boundary edges)" stderr || fail "message does not count the boundary edges"
     expect_no_output
     ;;
@@ -210,7 +167,7 @@ error_non_manifold)
     # Two tetrahedra glued along the edge 0-1.
     printf 'OFF\n6 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 -1 0\n0 0 -1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n3 0 4 1\n3 0 1 5\n3 1 4 5\n3 0 5 4\n' >in_fin.off
     run in_fin.off -o out.off --faces 4
-    expect_error in_fin.off
+    expect_error_about in_fin.off
     grep -q "non-manifold" stderr || fail "message does not say non-manifold"
     expect_no_output
     ;;
@@ -218,7 +175,7 @@ error_non_manifold)
 error_nan_coordinate)
     printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 nan 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n' >in_nan.off
     run in_nan.off -o out.off --faces 4
-    expect_error in_nan.off
+    expect_error_about in_nan.off
     grep -q "vertex 2" stderr || fail "message does not name vertex 2"
     expect_no_output
     ;;
@@ -226,14 +183,14 @@ error_nan_coordinate)
 error_index_out_of_range)
     printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 4\n3 0 3 2\n' >in_index.off
     run in_index.off -o out.off --faces 4
-    expect_error in_index.off
+    expect_error_about in_index.off
     grep -q "face 2" stderr || fail "message does not name face 2"
     expect_no_output
     ;;
 
 error_unwritable_output)
     run "$bob" -o no_such_folder/out.off --faces 100
-    expect_error no_such_folder/out.off
+    expect_error_about no_such_folder/out.off
     expect_no_output
     ;;
 

@@ -10,56 +10,12 @@ set -u
 bin=$1
 data=$2
 case_name=$3
-
-work=$(mktemp -d "${TMPDIR:-/tmp}/geotri_distance_${case_name}.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+program=geotri-distance
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 
 bob=$data/classic/bob_small.ply      # 250 vertices, 500 faces, closed, genus 1
 tripod=$data/cad/tripod.off          # 24 vertices, 44 faces
 femur=$data/anatomy/femur_thing157696.stl
-
-fail() {
-    echo "FAIL ($case_name): $*" >&2
-    for f in stdout stderr; do
-        if [ -s "$f" ]; then
-            echo "--- $f:" >&2
-            head -c 2000 "$f" >&2
-        fi
-    done
-    exit 1
-}
-
-# run ARGS...: runs the tool, keeping its exit code in $rc and its output in ./stdout and ./stderr.
-run() {
-    "$bin" "$@" >stdout 2>stderr
-    rc=$?
-}
-
-expect_rc() {
-    [ "$rc" -eq "$1" ] || fail "exit code $rc, expected $1"
-}
-
-# expect_error FILE: exit 1, one line on stderr that names FILE, nothing on stdout.
-expect_error() {
-    expect_rc 1
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-distance: error: $1: " stderr || fail "stderr does not start with 'geotri-distance: error: $1: '"
-    [ ! -s stdout ] || fail "stdout is not empty"
-}
-
-expect_usage_error() {
-    expect_rc 2
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-distance: error: " stderr || fail "stderr does not start with 'geotri-distance: error: '"
-}
-
-# expect_no_output: nothing but the inputs is left in the folder (no output, no temporary file).
-expect_no_output() {
-    local extra
-    extra=$(ls -A | grep -v -x -e stdout -e stderr -e 'in_.*')
-    [ -z "$extra" ] || fail "files left behind: $extra"
-}
 
 # A flat 5 x 4 grid of unit squares in the plane z = 0 (open mesh): geodesic distances are Euclidean there.
 write_grid() {
@@ -264,7 +220,7 @@ path_vtk)
 error_empty_file)
     : >in_empty.off
     run in_empty.off --source v:0 -o out.txt
-    expect_error in_empty.off
+    expect_error_about in_empty.off
     grep -q "empty" stderr || fail "message does not say empty"
     expect_no_output
     ;;
@@ -272,7 +228,7 @@ error_empty_file)
 error_truncated_ply)
     head -c 5000 "$bob" >in_cut.ply
     run in_cut.ply --source v:0 -o out.ply
-    expect_error in_cut.ply
+    expect_error_about in_cut.ply
     grep -q "truncated" stderr || fail "message does not say truncated"
     expect_no_output
     ;;
@@ -280,7 +236,7 @@ error_truncated_ply)
 error_truncated_stl)
     head -c 100000 "$femur" >in_cut.stl
     run in_cut.stl --source v:0 -o out.txt
-    expect_error in_cut.stl
+    expect_error_about in_cut.stl
     grep -q "truncated" stderr || fail "message does not say truncated"
     expect_no_output
     ;;
@@ -288,7 +244,7 @@ error_truncated_stl)
 error_nan_coordinate)
     printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 nan 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n' >in_nan.off
     run in_nan.off --source v:0 -o out.txt
-    expect_error in_nan.off
+    expect_error_about in_nan.off
     grep -q "vertex 2" stderr || fail "message does not name vertex 2"
     expect_no_output
     ;;
@@ -296,7 +252,7 @@ error_nan_coordinate)
 error_index_out_of_range)
     printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 4\n3 0 3 2\n' >in_index.off
     run in_index.off --source v:0 -o out.txt
-    expect_error in_index.off
+    expect_error_about in_index.off
     grep -q "face 2" stderr || fail "message does not name face 2"
     expect_no_output
     ;;
@@ -304,7 +260,7 @@ error_index_out_of_range)
 error_non_triangle)
     printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n4 0 1 3 2\n' >in_quad.off
     run in_quad.off --source v:0 -o out.txt
-    expect_error in_quad.off
+    expect_error_about in_quad.off
     grep -q "face 1 has 4 vertices" stderr || fail "message does not name the quad"
     expect_no_output
     ;;
@@ -313,7 +269,7 @@ error_non_manifold)
     # Three triangles on the edge 0-1.
     printf 'OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n' >in_fin.off
     run in_fin.off --source v:0 -o out.txt
-    expect_error in_fin.off
+    expect_error_about in_fin.off
     expect_no_output
     ;;
 
@@ -327,7 +283,7 @@ error_source_out_of_range)
 
 error_unwritable_output)
     run "$bob" --source v:0 -o no_such_folder/out.txt
-    expect_error no_such_folder/out.txt
+    expect_error_about no_such_folder/out.txt
     expect_no_output
     ;;
 

@@ -13,62 +13,14 @@ tools=$1
 data=$2
 case_name=$3
 bin=$tools/geotri-flip
-
-work=$(mktemp -d "${TMPDIR:-/tmp}/geotri_flip_${case_name}.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+program=geotri-flip
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 
 tripod=$data/cad/tripod.off                  # genus 0: its coarsest G (a tetrahedron) is valid
 femur=$data/anatomy/femur_thing157696.stl    # at 320 faces, its traced G is invalid and flips make it valid
 
-fail() {
-    echo "FAIL ($case_name): $*" >&2
-    for f in stdout stderr; do
-        if [ -s "$f" ]; then
-            echo "--- $f:" >&2
-            head -c 3000 "$f" >&2
-        fi
-    done
-    exit 1
-}
-
-run() {
-    "$bin" "$@" >stdout 2>stderr
-    rc=$?
-}
-
-expect_rc() {
-    [ "$rc" -eq "$1" ] || fail "exit code $rc, expected $1"
-}
-
-# expect_error TEXT: exit 1, one line on stderr that starts with the program's prefix and holds TEXT.
-expect_error() {
-    expect_rc 1
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-flip: error: " stderr || fail "stderr does not start with 'geotri-flip: error: '"
-    grep -q -- "$1" stderr || fail "stderr does not mention '$1'"
-    [ ! -s stdout ] || fail "stdout is not empty"
-}
-
-expect_usage_error() {
-    expect_rc 2
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-flip: error: " stderr || fail "stderr does not start with 'geotri-flip: error: '"
-}
-
-# Nothing but the inputs (in_*) and the logs is left (no output, no temporary file).
-expect_no_output() {
-    local extra
-    extra=$(ls -A | grep -v -x -e stdout -e stderr -e 'in_.*')
-    [ -z "$extra" ] || fail "files left behind: $extra"
-}
-
 check() {
     "$tools/geotri-check" "$1" --quiet
-}
-
-json_value() {
-    sed -n 's/.*"'"$1"'": *\([^,}]*\).*/\1/p' stdout | tr -d '"'
 }
 
 # make_gtri MESH DECIMATE_OPTIONS...: in_g.gtri, MESH decimated and traced (the fine mesh copied next to it).
@@ -200,7 +152,7 @@ still_invalid_exits_three_and_is_written)
 error_empty_gtri)
     : >in_empty.gtri
     run in_empty.gtri -o out.gtri
-    expect_error "in_empty.gtri"
+    expect_error_mentioning "in_empty.gtri"
     expect_no_output
     ;;
 
@@ -208,14 +160,14 @@ error_truncated_gtri)
     make_gtri "$tripod" --coarsest
     head -c 200 in_g.gtri >in_cut.gtri
     run in_cut.gtri -o out.gtri
-    expect_error "in_cut.gtri"
+    expect_error_mentioning "in_cut.gtri"
     expect_no_output
     ;;
 
 error_unwritable_output)
     make_gtri "$tripod" --coarsest
     run in_g.gtri -o no_such_folder/out.gtri
-    expect_error "no_such_folder/out.gtri"
+    expect_error_mentioning "no_such_folder/out.gtri"
     expect_no_output
     ;;
 

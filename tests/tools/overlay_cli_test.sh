@@ -13,57 +13,10 @@ trace=$2
 decimate=$3
 data=$4
 case_name=$5
-
-work=$(mktemp -d "${TMPDIR:-/tmp}/geotri_overlay_${case_name}.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+program=geotri-overlay
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 
 bob=$data/classic/bob_small.ply      # 250 vertices, 500 faces, closed, genus 1
-
-fail() {
-    echo "FAIL ($case_name): $*" >&2
-    for f in stdout stderr; do
-        if [ -s "$f" ]; then
-            echo "--- $f:" >&2
-            head -c 2000 "$f" >&2
-        fi
-    done
-    exit 1
-}
-
-run() {
-    "$bin" "$@" >stdout 2>stderr
-    rc=$?
-}
-
-expect_rc() {
-    [ "$rc" -eq "$1" ] || fail "exit code $rc, expected $1"
-}
-
-expect_error() {
-    expect_rc 1
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-overlay: error: $1: " stderr || fail "stderr does not start with 'geotri-overlay: error: $1: '"
-    [ ! -s stdout ] || fail "stdout is not empty"
-}
-
-expect_usage_error() {
-    expect_rc 2
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-overlay: error: " stderr || fail "stderr does not start with 'geotri-overlay: error: '"
-}
-
-# expect_no_output: nothing but the inputs (in_*) is left in the folder (no output, no temporary file).
-expect_no_output() {
-    local extra
-    extra=$(ls -A | grep -v -x -e stdout -e stderr -e 'in_.*')
-    [ -z "$extra" ] || fail "files left behind: $extra"
-}
-
-# json_value KEY: the value of KEY in the one-line JSON summary on stdout.
-json_value() {
-    sed -n "s/.*\"$1\": \([^,}]*\).*/\1/p" stdout
-}
 
 # The unit cube, each side split into two triangles, some along the diagonal that the tetrahedron of alternate
 # corners (0,0,0), (1,1,0), (1,0,1), (0,1,1) uses and some along the other one. Its geodesics are the six side
@@ -250,7 +203,7 @@ invalid_g_is_reported_and_written)
 error_empty_gtri)
     : >in_empty.gtri
     run in_empty.gtri -o out.vtu
-    expect_error in_empty.gtri
+    expect_error_about in_empty.gtri
     expect_no_output
     ;;
 
@@ -258,14 +211,14 @@ error_truncated_gtri)
     write_cube_and_tetrahedron
     head -c $(($(wc -c <in_tet.gtri) / 2)) in_tet.gtri >in_half.gtri
     run in_half.gtri -o out.vtu
-    expect_error in_half.gtri
+    expect_error_about in_half.gtri
     expect_no_output
     ;;
 
 error_unwritable_output)
     write_cube_and_tetrahedron
     run in_tet.gtri -o no_such_folder/out.vtu
-    expect_error no_such_folder/out.vtu
+    expect_error_about no_such_folder/out.vtu
     expect_no_output
     ;;
 

@@ -13,54 +13,11 @@ bin=$1
 data=$2
 case_name=$3
 check_bin=${4:-}
-
-work=$(mktemp -d "${TMPDIR:-/tmp}/geotri_trace_${case_name}.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+program=geotri-trace
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 
 tripod=$data/cad/tripod.off   # 24 vertices, 44 faces, closed, genus 0
 cross=$data/cad/cross.off     # 40 vertices, 76 faces, closed, genus 0
-
-fail() {
-    echo "FAIL ($case_name): $*" >&2
-    for f in stdout stderr; do
-        if [ -s "$f" ]; then
-            echo "--- $f:" >&2
-            head -c 2000 "$f" >&2
-        fi
-    done
-    exit 1
-}
-
-run() {
-    "$bin" "$@" >stdout 2>stderr
-    rc=$?
-}
-
-expect_rc() {
-    [ "$rc" -eq "$1" ] || fail "exit code $rc, expected $1"
-}
-
-# expect_error PROGRAM FILE: exit 1, one line on stderr that names FILE, nothing on stdout.
-expect_error() {
-    expect_rc 1
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^$1: error: $2: " stderr || fail "stderr does not start with '$1: error: $2: '"
-    [ ! -s stdout ] || fail "stdout is not empty"
-}
-
-expect_usage_error() {
-    expect_rc 2
-    [ "$(wc -l <stderr)" -eq 1 ] || fail "stderr is not one line"
-    grep -q "^geotri-trace: error: " stderr || fail "stderr does not start with 'geotri-trace: error: '"
-}
-
-# Nothing but the inputs (in_*), the logs and the folders named in $keep is left (no output, no temporary file).
-expect_no_output() {
-    local extra
-    extra=$(ls -A | grep -v -x -e stdout -e stderr -e 'in_.*' ${keep:+-e "$keep"})
-    [ -z "$extra" ] || fail "files left behind: $extra"
-}
 
 need_check() {
     if [ -z "$check_bin" ] || [ ! -x "$check_bin" ]; then
@@ -199,7 +156,7 @@ changed_fine_mesh_is_refused)
     off_edit 'k == 3 { $1 = $1 + 0.001 }' "$tripod" >in_meshes/tripod.off  # the first vertex moves
     "$check_bin" out/g.gtri >stdout 2>stderr
     rc=$?
-    expect_error geotri-check out/g.gtri
+    expect_error_about out/g.gtri geotri-check
     grep -q "not the one this file was made on" stderr || fail "message does not say the fine mesh changed"
     ;;
 
@@ -209,7 +166,7 @@ fine_override)
     mv in_meshes/tripod.off in_elsewhere.off
     "$check_bin" out/g.gtri >stdout 2>stderr
     rc=$?
-    expect_error geotri-check out/g.gtri
+    expect_error_about out/g.gtri geotri-check
     grep -q -- "--fine" stderr || fail "message does not mention --fine"
     "$check_bin" out/g.gtri --fine in_elsewhere.off >stdout 2>stderr
     rc=$?
@@ -219,14 +176,14 @@ fine_override)
 error_empty_coarse)
     : >in_empty.off
     run "$tripod" in_empty.off -o out.gtri
-    expect_error geotri-trace in_empty.off
+    expect_error_about in_empty.off
     expect_no_output
     ;;
 
 error_truncated_coarse)
     head -c 300 "$tripod" >in_cut.off
     run "$tripod" in_cut.off -o out.gtri
-    expect_error geotri-trace in_cut.off
+    expect_error_about in_cut.off
     expect_no_output
     ;;
 
@@ -234,7 +191,7 @@ error_open_coarse)
     # The tripod without its last face.
     off_edit 'k == 2 { print $1, $2 - 1, $3; next } k == 2 + nv + nf { next }' "$tripod" >in_open.off
     run "$tripod" in_open.off -o out.gtri
-    expect_error geotri-trace in_open.off
+    expect_error_about in_open.off
     grep -q "not closed (3 boundary edges)" stderr || fail "message does not say not closed"
     expect_no_output
     ;;
@@ -242,7 +199,7 @@ error_open_coarse)
 error_open_fine)
     off_edit 'k == 2 { print $1, $2 - 1, $3; next } k == 2 + nv + nf { next }' "$tripod" >in_open.off
     run in_open.off "$tripod" -o out.gtri
-    expect_error geotri-trace in_open.off
+    expect_error_about in_open.off
     grep -q "not closed" stderr || fail "message does not say not closed"
     expect_no_output
     ;;
@@ -250,14 +207,14 @@ error_open_fine)
 error_nan_coarse)
     off_edit 'k == 3 { $1 = "nan" }' "$tripod" >in_nan.off
     run "$tripod" in_nan.off -o out.gtri
-    expect_error geotri-trace in_nan.off
+    expect_error_about in_nan.off
     expect_no_output
     ;;
 
 error_index_out_of_range)
     off_edit 'k == 2 + nv + nf { $4 = 99 }' "$tripod" >in_index.off
     run "$tripod" in_index.off -o out.gtri
-    expect_error geotri-trace in_index.off
+    expect_error_about in_index.off
     expect_no_output
     ;;
 
@@ -266,14 +223,14 @@ error_coarse_on_another_mesh)
     # component: either way the tripod traced with a coarse mesh from elsewhere must work or fail cleanly.
     run "$tripod" "$cross" -o out.gtri
     if [ "$rc" -ne 0 ]; then
-        expect_error geotri-trace "$cross"
+        expect_error_about "$cross"
         expect_no_output
     fi
     ;;
 
 error_unwritable_output)
     run "$tripod" "$tripod" -o no_such_folder/out.gtri
-    expect_error geotri-trace no_such_folder/out.gtri
+    expect_error_about no_such_folder/out.gtri
     expect_no_output
     ;;
 
