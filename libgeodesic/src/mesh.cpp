@@ -220,7 +220,8 @@ SurfacePoint Mesh::canonical(const SurfacePoint& p) const {
             if (!(sum > 0.0)) throw InvalidInput("barycentric coordinates sum to zero");
             if (std::abs(sum - 1.0) > 1e-9)
                 throw InvalidInput("barycentric coordinates sum to " + std::to_string(sum) + ", not 1");
-            if (sum != 1.0)
+            // Normalise only what rounding cannot explain, so that canonical() of a canonical point is that point.
+            if (std::abs(sum - 1.0) > 8.0 * std::numeric_limits<double>::epsilon())
                 for (double& x : b) x /= sum;
             const auto& t = triangles_[p.face];
             int zeros = (b[0] == 0.0) + (b[1] == 0.0) + (b[2] == 0.0);

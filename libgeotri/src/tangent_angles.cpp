@@ -137,6 +137,28 @@ int common_face(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q) 
     return -1;
 }
 
+std::array<double, 3> barycentric_in(const Mesh& mesh, int f, const SurfacePoint& p) {
+    const std::array<int, 3>& t = mesh.triangle(f);
+    std::array<double, 3> b{0.0, 0.0, 0.0};
+    auto corner = [&](int v) {
+        for (std::size_t i = 0; i < 3; ++i)
+            if (t[i] == v) return i;
+        throw InvalidInput("a point is not on fine face " + std::to_string(f));
+    };
+    switch (p.kind) {
+    case PointKind::vertex: b[corner(p.vertex)] = 1.0; break;
+    case PointKind::edge:
+        b[corner(p.edge_v0)] = 1.0 - p.t;
+        b[corner(p.edge_v1)] = p.t;
+        break;
+    case PointKind::face:
+        if (p.face != f) throw InvalidInput("a point is not on fine face " + std::to_string(f));
+        b = p.bary;
+        break;
+    }
+    return b;
+}
+
 Eigen::Vector2d halfedge_coordinates(const Mesh& mesh, int h, const SurfacePoint& p) {
     const int f = Mesh::face_of(h);
     const Eigen::Vector2d corner[3] = {Eigen::Vector2d::Zero(), Eigen::Vector2d(mesh.length(h), 0.0), mesh.apex(h)};

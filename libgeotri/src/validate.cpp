@@ -4,6 +4,8 @@
 #include <geotri/tangent_angles.h>
 #include <geotri/validate.h>
 
+#include "plane_segments.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +19,9 @@ namespace geotri {
 
 using geodesic::Mesh;
 using geodesic::PointKind;
+
+using detail::point_segment_distance;
+using detail::segment_distance;
 
 namespace {
 
@@ -58,25 +63,6 @@ int edge_key(const Mesh& mesh, int a, int b) {
     if (h < 0) return g;
     if (g < 0) return h;
     return std::min(h, g);
-}
-
-double point_segment_distance(const Eigen::Vector2d& x, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const Eigen::Vector2d d = b - a;
-    const double dd = d.squaredNorm();
-    const double s = dd > 0.0 ? std::clamp((x - a).dot(d) / dd, 0.0, 1.0) : 0.0;
-    return (a + s * d - x).norm();
-}
-
-double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
-
-double segment_distance(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0,
-                        const Eigen::Vector2d& b1) {
-    const double o1 = cross(a1 - a0, b0 - a0), o2 = cross(a1 - a0, b1 - a0);
-    const double o3 = cross(b1 - b0, a0 - b0), o4 = cross(b1 - b0, a1 - b0);
-    if (((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)))
-        return 0.0;
-    return std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
-                     point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
 }
 
 /// A point that takes part in condition 3: point `index` of the polyline of coarse edge `feature` (feature < number

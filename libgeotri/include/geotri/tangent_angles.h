@@ -15,6 +15,8 @@
 #include <geodesic/surface_point.h>
 
 #include <Eigen/Core>
+
+#include <array>
 #include <vector>
 
 namespace geotri {
@@ -35,6 +37,10 @@ bool on_common_edge(const geodesic::Mesh& mesh, const geodesic::SurfacePoint& p,
 /// in the plane frame of the fine halfedge h of f: tail(h) at (0, 0), head(h) at (length(h), 0), the face at y >= 0.
 /// Throws InvalidInput when p does not lie on face(h).
 Eigen::Vector2d halfedge_coordinates(const geodesic::Mesh& mesh, int h, const geodesic::SurfacePoint& p);
+
+/// The barycentric coordinates of p in fine face f, in the order of triangle(f), for p on f (one of its vertices, a
+/// point of one of its edges, or a point inside it). Throws InvalidInput when p does not lie on f.
+std::array<double, 3> barycentric_in(const geodesic::Mesh& mesh, int f, const geodesic::SurfacePoint& p);
 
 /// The polar angle at p, in [0, cone_angle(p)), of the straight segment from p to q. The two points must be
 /// distinct and share a face of T, as consecutive points of a geodesic polyline do; a segment along a fine edge or

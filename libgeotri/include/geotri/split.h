@@ -1,0 +1,52 @@
+#pragma once
+// Edge split and face split (DESIGN.md §2, local operations): a new coarse vertex at a surface point, joined to the
+// vertices around it by exact geodesics. Each split either leaves a valid G valid, or is refused with G unchanged
+// and the reason given.
+
+#include <geotri/geodesic_triangulation.h>
+
+#include <string>
+
+namespace geotri {
+
+namespace geodesic {
+class ExactGeodesic;
+}
+struct Overlay;
+
+struct SplitOptions {
+    /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
+    geodesic::ExactGeodesic* propagation = nullptr;
+    /// When the shortest geodesic from the new vertex leaves the patch that it must run in, try the shortest path
+    /// inside that patch (PatchRegion), which needs the overlay.
+    bool region_fallback = true;
+    /// The overlay of this same G for the fallback; built when needed if null.
+    const Overlay* overlay = nullptr;
+};
+
+struct SplitResult {
+    bool done = false;
+    std::string reason;                  ///< one readable line when refused
+    OpenMesh::VertexHandle vertex;       ///< the new coarse vertex, when done
+    int region_paths = 0;                ///< new geodesics that are the shortest paths inside their patch
+};
+
+/// The point at arc-length fraction `fraction` (in [0, 1]) of e's polyline, from from_vertex(halfedge(e, 0)).
+/// Throws InvalidInput when e is not an edge or has no polyline, or fraction is outside [0, 1].
+SurfacePoint point_along(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e, double fraction);
+
+/// Splits edge e = (a, b), between faces (a, b, c) and (b, a, d), at the point m at arc-length `fraction` of its
+/// polyline: a-m and m-b keep the two parts of the old polyline, and m-c and m-d are new geodesics that must run
+/// inside the old patches of (a, b, c) and (b, a, d). Refused when m is an end of e, or when a new geodesic cannot
+/// be found inside its patch, leaving and reaching its ends strictly inside the corners it splits. Preconditions:
+/// G valid around e and every polyline of e's faces traced.
+SplitResult split_edge(GeodesicTriangulation& g, OpenMesh::EdgeHandle e, double fraction,
+                       const SplitOptions& options = {});
+
+/// Splits face f = (a, b, c) at p, a point of T strictly inside its patch, with new geodesics p-a, p-b and p-c
+/// inside that patch. Refused when p is not strictly inside the patch, or the three geodesics cannot be made so
+/// that G stays valid. Preconditions: G valid around f and f's polylines traced.
+SplitResult split_face(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& p,
+                       const SplitOptions& options = {});
+
+}  // namespace geotri

@@ -1,0 +1,140 @@
+#include "local_checks.h"
+
+#include "plane_segments.h"
+
+#include <geodesic/errors.h>
+#include <geotri/tangent_angles.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+
+namespace geotri::detail {
+
+using geodesic::Mesh;
+using geodesic::PointKind;
+
+namespace {
+
+// As validate(): points closer than this times the local fine edge length are the same point.
+constexpr double k_meet_tolerance = 1e-12;
+
+/// A piece of a polyline inside one fine face, in the frame of the face's first halfedge: a segment, or a single
+/// point (a polyline point on a fine vertex, entered in every face around the vertex so that a path that passes
+/// near the vertex in any of them is seen).
+struct Piece {
+    Eigen::Vector2d x0, x1;
+    int tag0, tag1;  ///< per end: 0 or 1 when it is that end of the new geodesic, -1 otherwise
+    bool point;
+    int polyline;    ///< index into the bounding paths, for messages
+};
+
+/// The fine faces that hold the straight segment from p to q: one, or the two faces of the fine edge they lie on.
+std::vector<int> faces_of_segment(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q) {
+    if (on_common_edge(mesh, p, q)) {
+        int a, b;
+        if (p.kind == PointKind::edge) {
+            a = p.edge_v0;
+            b = p.edge_v1;
+        } else if (q.kind == PointKind::edge) {
+            a = q.edge_v0;
+            b = q.edge_v1;
+        } else {
+            a = p.vertex;
+            b = q.vertex;
+        }
+        std::vector<int> faces;
+        for (int h : {mesh.find_halfedge(a, b), mesh.find_halfedge(b, a)})
+            if (h >= 0) faces.push_back(Mesh::face_of(h));
+        return faces;
+    }
+    const int f = common_face(mesh, p, q);
+    if (f < 0) throw InvalidInput("a polyline has consecutive points on no common fine face");
+    return {f};
+}
+
+/// Adds the pieces of `line` to `pieces` by fine face; `end_tag` holds the tags of its first and last point.
+void add_pieces(const Mesh& mesh, const Polyline& line, std::array<int, 2> end_tag, int id,
+                std::map<int, std::vector<Piece>>& pieces) {
+    const std::size_t n = line.size();
+    auto tag_of = [&](std::size_t i) { return i == 0 ? end_tag[0] : (i + 1 == n ? end_tag[1] : -1); };
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+        const SurfacePoint& p = line[i];
+        const SurfacePoint& q = line[i + 1];
+        for (int f : faces_of_segment(mesh, p, q))
+            pieces[f].push_back({halfedge_coordinates(mesh, 3 * f, p), halfedge_coordinates(mesh, 3 * f, q),
+                                 tag_of(i), tag_of(i + 1), false, id});
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        const SurfacePoint& p = line[i];
+        if (p.kind != PointKind::vertex) continue;
+        for (int h : mesh.outgoing_halfedges(p.vertex)) {
+            const int f = Mesh::face_of(h);
+            const Eigen::Vector2d x = halfedge_coordinates(mesh, 3 * f, p);
+            pieces[f].push_back({x, x, tag_of(i), tag_of(i), true, id});
+        }
+    }
+}
+
+/// Whether two pieces in one face meet other than at a common end of the new geodesic.
+bool pieces_meet(const Piece& s, const Piece& r, double tolerance) {
+    for (int i = 0; i < 2; ++i) {
+        const int tag = i == 0 ? s.tag0 : s.tag1;
+        if (tag < 0) continue;
+        int j = -1;
+        if (r.tag0 == tag) j = 0;
+        else if (r.tag1 == tag) j = 1;
+        if (j < 0) continue;
+        if (s.point || r.point) return false;
+        // Two geodesics leaving one end overlap when the far end of one lies on the other.
+        const Eigen::Vector2d& s_far = i == 0 ? s.x1 : s.x0;
+        const Eigen::Vector2d& r_far = j == 0 ? r.x1 : r.x0;
+        return point_segment_distance(s_far, r.x0, r.x1) <= tolerance ||
+               point_segment_distance(r_far, s.x0, s.x1) <= tolerance;
+    }
+    return segment_distance(s.x0, s.x1, r.x0, r.x1) <= tolerance;
+}
+
+}  // namespace
+
+std::string first_meeting(const Mesh& mesh, const Polyline& path, const std::vector<BoundingPath>& around) {
+    std::map<int, std::vector<Piece>> bounding;
+    for (std::size_t i = 0; i < around.size(); ++i)
+        add_pieces(mesh, around[i].path, {around[i].start_tag, -1}, static_cast<int>(i), bounding);
+    std::map<int, std::vector<Piece>> fresh;
+    add_pieces(mesh, path, {0, 1}, -1, fresh);
+    for (const auto& [f, list] : fresh) {
+        const auto it = bounding.find(f);
+        if (it == bounding.end()) continue;
+        const double tolerance =
+            k_meet_tolerance * std::max({mesh.length(3 * f), mesh.length(3 * f + 1), mesh.length(3 * f + 2)});
+        for (const Piece& s : list)
+            for (const Piece& r : it->second)
+                if (pieces_meet(s, r, tolerance))
+                    return "the new geodesic meets the polyline " +
+                           around[static_cast<std::size_t>(r.polyline)].name + " in fine face " + std::to_string(f);
+    }
+    return {};
+}
+
+CornerSplit split_corner(double from, double inner, double to, double theta) {
+    CornerSplit split;
+    split.before = ccw_angle(from, inner, theta);
+    split.after = ccw_angle(inner, to, theta);
+    const double whole = ccw_angle(from, to, theta);
+    split.ok = split.before < whole && split.before > k_min_new_corner && split.after > k_min_new_corner;
+    return split;
+}
+
+double start_direction(const GeodesicTriangulation& g, OpenMesh::HalfedgeHandle h) {
+    const CoarseMesh& coarse = g.coarse();
+    const OpenMesh::EdgeHandle e = coarse.edge_handle(h);
+    const Polyline& line = g.polyline(e);
+    if (line.size() < 2)
+        throw InvalidInput("coarse edge " + std::to_string(e.idx()) + " has no polyline of two points or more");
+    const std::size_t n = line.size();
+    if (h == coarse.halfedge_handle(e, 0)) return polar_angle(g.fine().mesh, line[0], line[1]);
+    return polar_angle(g.fine().mesh, line[n - 1], line[n - 2]);
+}
+
+}  // namespace geotri::detail

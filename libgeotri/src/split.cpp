@@ -1,0 +1,293 @@
+#include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
+#include <geotri/overlay.h>
+#include <geotri/patch_region.h>
+#include <geotri/split.h>
+#include <geotri/tangent_angles.h>
+
+#include "local_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace geotri {
+
+using geodesic::Mesh;
+using OpenMesh::EdgeHandle;
+using OpenMesh::FaceHandle;
+using OpenMesh::HalfedgeHandle;
+using OpenMesh::VertexHandle;
+
+namespace {
+
+constexpr double k_two_pi = 6.28318530717958647692;
+
+/// A new geodesic from the new vertex to an existing coarse vertex, and what bounds it.
+struct Spoke {
+    VertexHandle to;
+    int patch = -1;  ///< the coarse face whose (old) patch it must run in
+    /// At the new vertex, when `has_wedge`: it must leave strictly inside the corner from wedge_from to wedge_to.
+    bool has_wedge = false;
+    double wedge_from = 0.0, wedge_to = 0.0;
+    /// At `to`: it must arrive strictly inside the corner from the geodesic of corner_from counter-clockwise to that
+    /// of corner_to (both halfedges leave `to`).
+    HalfedgeHandle corner_from, corner_to;
+    std::vector<detail::BoundingPath> around;  ///< the polylines it must not meet
+    Polyline path;
+    bool in_region = false;
+};
+
+/// The arc-length position of `fraction` on `line`: the segment index i and the parameter u in [0, 1] on it.
+std::pair<std::size_t, double> locate_along(const Mesh& mesh, const Polyline& line, double fraction) {
+    std::vector<double> lengths(line.size() - 1);
+    double total = 0.0;
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        lengths[i] = (mesh.point(line[i + 1]) - mesh.point(line[i])).norm();
+        total += lengths[i];
+    }
+    double target = fraction * total;
+    for (std::size_t i = 0; i < lengths.size(); ++i) {
+        if (target <= lengths[i] || i + 1 == lengths.size())
+            return {i, lengths[i] > 0.0 ? std::clamp(target / lengths[i], 0.0, 1.0) : 0.0};
+        target -= lengths[i];
+    }
+    return {0, 0.0};
+}
+
+/// The point at parameter u of the straight segment from p to q, two points of one fine face.
+SurfacePoint point_on_segment(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q, double u) {
+    if (u <= 0.0) return mesh.canonical(p);
+    if (u >= 1.0) return mesh.canonical(q);
+    const int f = common_face(mesh, p, q);
+    if (f < 0) throw InvalidInput("a polyline has consecutive points on no common fine face");
+    const std::array<double, 3> bp = barycentric_in(mesh, f, p), bq = barycentric_in(mesh, f, q);
+    std::array<double, 3> b{};
+    for (std::size_t k = 0; k < 3; ++k) b[k] = (1.0 - u) * bp[k] + u * bq[k];
+    return mesh.canonical(SurfacePoint::in_face(f, b));
+}
+
+double cone_of(const GeodesicTriangulation& g, VertexHandle v) { return cone_angle(g.fine().mesh, g.location(v)); }
+
+/// Empty when `path` is acceptable for `spoke` from a new vertex at a point of cone angle `theta`, else why not.
+std::string check_spoke(const GeodesicTriangulation& g, const Spoke& spoke, const Polyline& path, double theta) {
+    const Mesh& mesh = g.fine().mesh;
+    const std::string name = "the geodesic to coarse vertex " + std::to_string(spoke.to.idx());
+    const std::size_t n = path.size();
+    if (n < 2) return name + " is empty";
+    if (spoke.has_wedge &&
+        !detail::split_corner(spoke.wedge_from, polar_angle(mesh, path[0], path[1]), spoke.wedge_to, theta).ok)
+        return name + " does not leave the new vertex inside the patch";
+    if (!detail::split_corner(detail::start_direction(g, spoke.corner_from), polar_angle(mesh, path[n - 1], path[n - 2]),
+                              detail::start_direction(g, spoke.corner_to), cone_of(g, spoke.to))
+             .ok)
+        return name + " does not reach it inside the corner of the patch";
+    const std::string meeting = detail::first_meeting(mesh, path, spoke.around);
+    return meeting.empty() ? meeting : name + ": " + meeting;
+}
+
+/// Finds the geodesics of `spokes` from `from`: the shortest geodesics on T, then, for those that fail
+/// check_spoke(), the shortest paths inside their patch. Returns why one could not be found, or empty.
+std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from, std::vector<Spoke>& spokes,
+                        const SplitOptions& options) {
+    const Mesh& mesh = g.fine().mesh;
+    const double theta = cone_angle(mesh, from);
+    std::unique_ptr<geodesic::ExactGeodesic> own;
+    geodesic::ExactGeodesic* propagation = options.propagation;
+    if (!propagation) {
+        own = std::make_unique<geodesic::ExactGeodesic>(mesh);
+        propagation = own.get();
+    }
+    geodesic::PropagationOptions propagation_options;
+    for (const Spoke& s : spokes) propagation_options.stop_points.push_back(g.location(s.to));
+    propagation->propagate({from}, propagation_options);
+
+    Overlay built;
+    const Overlay* overlay = options.overlay;
+    for (Spoke& s : spokes) {
+        s.path = propagation->shortest_path(g.location(s.to));
+        std::string why = check_spoke(g, s, s.path, theta);
+        if (why.empty()) continue;
+        if (!options.region_fallback) return why;
+        if (!overlay) {
+            built = build_overlay(g);
+            overlay = &built;
+        }
+        PatchRegion::Path inside;
+        try {
+            inside = PatchRegion(g, *overlay, {s.patch}).shortest_path(from, g.location(s.to));
+        } catch (const InvalidInput& e) {
+            return why + "; inside the patch: " + e.what();
+        }
+        if (inside.polyline.empty()) return why + "; inside the patch: " + inside.failure;
+        const std::string why_inside = check_spoke(g, s, inside.polyline, theta);
+        if (!why_inside.empty()) return why + "; inside the patch: " + why_inside;
+        s.path = std::move(inside.polyline);
+        s.in_region = true;
+    }
+    return {};
+}
+
+/// Adds a coarse vertex at `location` (its position on T), not yet connected.
+VertexHandle add_vertex_at(GeodesicTriangulation& g, const SurfacePoint& location) {
+    const Eigen::Vector3d x = g.fine().mesh.point(location);
+    return g.coarse().add_vertex(CoarseMesh::Point(x.x(), x.y(), x.z()));
+}
+
+/// Sets the polylines of the new vertex's edges; throws when OpenMesh did not join it to a vertex it should.
+void set_spoke_paths(GeodesicTriangulation& g, VertexHandle v, const std::vector<std::pair<VertexHandle, Polyline>>& paths) {
+    for (const auto& [to, path] : paths) {
+        const HalfedgeHandle h = g.coarse().find_halfedge(v, to);
+        if (!h.is_valid()) throw InvalidInput("split: OpenMesh's split went wrong");
+        g.set_path(h, path);
+    }
+}
+
+}  // namespace
+
+SurfacePoint point_along(const GeodesicTriangulation& g, EdgeHandle e, double fraction) {
+    if (!e.is_valid() || static_cast<std::size_t>(e.idx()) >= g.coarse().n_edges())
+        throw InvalidInput("point_along: not an edge of the coarse mesh");
+    if (!(fraction >= 0.0 && fraction <= 1.0)) throw InvalidInput("point_along: the fraction is not in [0, 1]");
+    const Polyline& line = g.polyline(e);
+    if (line.size() < 2)
+        throw InvalidInput("coarse edge " + std::to_string(e.idx()) + " has no polyline of two points or more");
+    const auto [i, u] = locate_along(g.fine().mesh, line, fraction);
+    return point_on_segment(g.fine().mesh, line[i], line[i + 1], u);
+}
+
+SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, const SplitOptions& options) {
+    CoarseMesh& coarse = g.coarse();
+    const Mesh& mesh = g.fine().mesh;
+    SplitResult result;
+    if (!e.is_valid() || static_cast<std::size_t>(e.idx()) >= coarse.n_edges() || coarse.status(e).deleted())
+        throw InvalidInput("split_edge: not an edge of the coarse mesh");
+    const std::string name = "coarse edge " + std::to_string(e.idx());
+    if (coarse.is_boundary(e)) {
+        result.reason = name + " is on a boundary";
+        return result;
+    }
+    if (!(fraction > 0.0 && fraction < 1.0)) throw InvalidInput("split_edge: the fraction is not in (0, 1)");
+    const HalfedgeHandle ab = coarse.halfedge_handle(e, 0), ba = coarse.halfedge_handle(e, 1);
+    const VertexHandle a = coarse.from_vertex_handle(ab), b = coarse.to_vertex_handle(ab);
+    const HalfedgeHandle bc = coarse.next_halfedge_handle(ab), ca = coarse.next_halfedge_handle(bc);
+    const HalfedgeHandle ad = coarse.next_halfedge_handle(ba), db = coarse.next_halfedge_handle(ad);
+    const VertexHandle c = coarse.to_vertex_handle(bc), d = coarse.to_vertex_handle(ad);
+
+    // The two parts of the old polyline, from the new vertex m.
+    const Polyline line = g.path(ab);
+    const auto [i, u] = locate_along(mesh, line, fraction);
+    const SurfacePoint m = point_on_segment(mesh, line[i], line[i + 1], u);
+    if (m == line.front() || m == line.back()) {
+        result.reason = name + ": the split point is an end of the edge";
+        return result;
+    }
+    Polyline to_a(line.begin(), line.begin() + static_cast<long>(i) + 1);
+    if (to_a.back() != m) to_a.push_back(m);
+    std::reverse(to_a.begin(), to_a.end());
+    Polyline to_b{m};
+    to_b.insert(to_b.end(), line.begin() + static_cast<long>(i) + (line[i + 1] == m ? 2 : 1), line.end());
+
+    // m-c runs in the patch of (a, b, c), on the left of a->b: counter-clockwise at m from m->b to m->a, and at c
+    // from c->a to c->b. m-d runs in the patch of (b, a, d): at m from m->a to m->b, and at d from d->b to d->a.
+    const double towards_a = polar_angle(mesh, to_a[0], to_a[1]), towards_b = polar_angle(mesh, to_b[0], to_b[1]);
+    std::vector<Spoke> spokes(2);
+    Spoke& to_c = spokes[0];
+    to_c.to = c;
+    to_c.patch = coarse.face_handle(ab).idx();
+    to_c.has_wedge = true;
+    to_c.wedge_from = towards_b;
+    to_c.wedge_to = towards_a;
+    to_c.corner_from = ca;
+    to_c.corner_to = coarse.opposite_halfedge_handle(bc);
+    to_c.around = {{to_a, 0, "m-a"}, {to_b, 0, "m-b"}, {g.path(ca), 1, "c-a"}, {g.path(to_c.corner_to), 1, "c-b"}};
+    Spoke& to_d = spokes[1];
+    to_d.to = d;
+    to_d.patch = coarse.face_handle(ba).idx();
+    to_d.has_wedge = true;
+    to_d.wedge_from = towards_a;
+    to_d.wedge_to = towards_b;
+    to_d.corner_from = db;
+    to_d.corner_to = coarse.opposite_halfedge_handle(ad);
+    to_d.around = {{to_a, 0, "m-a"}, {to_b, 0, "m-b"}, {g.path(db), 1, "d-b"}, {g.path(to_d.corner_to), 1, "d-a"}};
+
+    const std::string why = find_spokes(g, m, spokes, options);
+    if (!why.empty()) {
+        result.reason = name + ": " + why;
+        return result;
+    }
+    const VertexHandle v = add_vertex_at(g, m);
+    coarse.split(e, v);
+    g.set_location(v, m);
+    set_spoke_paths(g, v, {{a, to_a}, {b, to_b}, {c, spokes[0].path}, {d, spokes[1].path}});
+    result.done = true;
+    result.vertex = v;
+    result.region_paths = spokes[0].in_region + spokes[1].in_region;
+    return result;
+}
+
+SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoint& p, const SplitOptions& options) {
+    CoarseMesh& coarse = g.coarse();
+    const Mesh& mesh = g.fine().mesh;
+    SplitResult result;
+    if (!f.is_valid() || static_cast<std::size_t>(f.idx()) >= coarse.n_faces() || coarse.status(f).deleted())
+        throw InvalidInput("split_face: not a face of the coarse mesh");
+    const std::string name = "coarse face " + std::to_string(f.idx());
+    const SurfacePoint point = mesh.canonical(p);
+
+    // For each corner x of f, with y and z the next ones: the geodesic p-x must reach x inside the corner from x->y
+    // to x->z, and meet neither f's three polylines (other than at x) nor the other new geodesics (other than at p).
+    std::vector<Spoke> spokes;
+    std::vector<HalfedgeHandle> sides;  // x->y for each corner x
+    for (HalfedgeHandle h : coarse.fh_range(f)) sides.push_back(h);
+    for (std::size_t k = 0; k < 3; ++k) {
+        const HalfedgeHandle xy = sides[k], zx = sides[(k + 2) % 3], yz = sides[(k + 1) % 3];
+        Spoke s;
+        s.to = coarse.from_vertex_handle(xy);
+        if (same_point(mesh, g.location(s.to), point)) {
+            result.reason = name + ": the split point is one of its vertices";
+            return result;
+        }
+        s.patch = f.idx();
+        s.corner_from = xy;
+        s.corner_to = coarse.opposite_halfedge_handle(zx);
+        s.around = {{g.path(xy), 1, "x-y"}, {g.path(s.corner_to), 1, "x-z"}, {g.path(yz), -1, "y-z"}};
+        spokes.push_back(std::move(s));
+    }
+    std::string why = find_spokes(g, point, spokes, options);
+    // The three geodesics leave p in the counter-clockwise order of f's corners, and apart from each other.
+    if (why.empty()) {
+        const double theta = cone_angle(mesh, point);
+        std::array<double, 3> out{};
+        for (std::size_t k = 0; k < 3; ++k) out[k] = polar_angle(mesh, spokes[k].path[0], spokes[k].path[1]);
+        double turn = 0.0, smallest = k_two_pi;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double angle = ccw_angle(out[k], out[(k + 1) % 3], theta);
+            turn += angle;
+            smallest = std::min(smallest, angle);
+        }
+        if (!(smallest > detail::k_min_new_corner) || std::abs(turn - theta) > 1e-9 * theta)
+            why = "the new geodesics do not leave the split point in the order of the face's corners";
+    }
+    for (std::size_t k = 0; k < 3 && why.empty(); ++k)
+        for (std::size_t j = k + 1; j < 3 && why.empty(); ++j) {
+            const std::string meeting = detail::first_meeting(mesh, spokes[k].path, {{spokes[j].path, 0, "p-y"}});
+            if (!meeting.empty()) why = "two new geodesics meet: " + meeting;
+        }
+    if (!why.empty()) {
+        result.reason = name + ": " + why;
+        return result;
+    }
+    const VertexHandle v = add_vertex_at(g, point);
+    coarse.split(f, v);
+    g.set_location(v, point);
+    set_spoke_paths(g, v, {{spokes[0].to, spokes[0].path}, {spokes[1].to, spokes[1].path}, {spokes[2].to, spokes[2].path}});
+    result.done = true;
+    result.vertex = v;
+    for (const Spoke& s : spokes) result.region_paths += s.in_region;
+    return result;
+}
+
+}  // namespace geotri
