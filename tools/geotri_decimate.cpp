@@ -29,16 +29,6 @@ struct Arguments {
     std::string strategy = "multiple-choice";
 };
 
-CLI::Validator coarse_extension() {
-    return CLI::Validator(
-        [](std::string& path) -> std::string {
-            const std::string ext = tools::extension_of(path);
-            if (ext == ".off" || ext == ".obj" || ext == ".ply") return {};
-            return "'" + path + "' should end in .off, .obj or .ply";
-        },
-        "");
-}
-
 int run(tools::Tool& tool) {
     CLI::App& app = tool.app;
     app.description("Decimates a closed triangle mesh by halfedge collapses: the coarse vertices are input vertices at\n"
@@ -50,7 +40,7 @@ int run(tools::Tool& tool) {
         ->check(CLI::ExistingFile);
     app.add_option("-o,--output", args.output, "Coarse mesh: .off, .obj or .ply (exact coordinates)")
         ->required()
-        ->check(coarse_extension());
+        ->check(tools::extension_validator({".off", ".obj", ".ply"}, ".off, .obj or .ply"));
     // Exactly one target, checked by CLI11 while parsing.
     CLI::Option_group* target = app.add_option_group("Target", "Exactly one of these");
     target->add_option("--faces", args.faces, "At most this many faces in all")->check(CLI::PositiveNumber);

@@ -48,20 +48,6 @@ CLI::Validator spec_validator() {
         "SPEC");
 }
 
-CLI::Validator extension_validator(std::vector<std::string> extensions) {
-    std::string names;
-    for (const std::string& e : extensions) names += (names.empty() ? "" : ", ") + e;
-    return CLI::Validator(
-        [extensions, names](std::string& path) -> std::string {
-            const std::string ext = tools::extension_of(path);
-            for (const std::string& e : extensions) {
-                if (ext == e) return {};
-            }
-            return "'" + path + "' should end in " + names;
-        },
-        "");
-}
-
 /// The geodesic mesh of the file, with the file's name on every error.
 geotri::geodesic::Mesh load_mesh(const std::string& path) {
     geotri::MeshData data = geotri::read_mesh(path);
@@ -179,11 +165,11 @@ int run(tools::Tool& tool) {
     app.add_option("-o,--output", args.output,
                    "Distances: .txt (one line per vertex, in load order) or .ply (the mesh with a distance property)")
         ->required()
-        ->check(extension_validator({".txt", ".ply"}));
+        ->check(tools::extension_validator({".txt", ".ply"}));
     CLI::Option* path_to = app.add_option("--path-to", args.path_to, "Trace the shortest path from the sources to this point")
                                ->check(spec_validator());
     CLI::Option* path_out = app.add_option("--path-out", args.path_out, "Where to write that path: .obj or .vtk")
-                                ->check(extension_validator({".obj", ".vtk"}));
+                                ->check(tools::extension_validator({".obj", ".vtk"}));
     path_to->needs(path_out);
     path_out->needs(path_to);
     tool.parse();

@@ -41,11 +41,7 @@ int run(tools::Tool& tool) {
     app.add_option("IN", input, "The geodesic triangulation: .gtri")->required()->check(CLI::ExistingFile);
     app.add_option("-o,--output", output, "The flipped geodesic triangulation: .gtri")
         ->required()
-        ->check(CLI::Validator(
-            [](std::string& path) -> std::string {
-                return tools::extension_of(path) == ".gtri" ? std::string() : "'" + path + "' should end in .gtri";
-            },
-            ""));
+        ->check(tools::extension_validator({".gtri"}));
     app.add_option("--criterion", criterion_name,
                    "angle: flip when that raises the minimum corner angle of the two triangles (default);\n"
                    "length: intrinsic Delaunay on the geodesic edge lengths")

@@ -26,19 +26,6 @@ struct Arguments {
     std::string fine;
 };
 
-CLI::Validator extension_validator(std::vector<std::string> extensions) {
-    std::string names;
-    for (const std::string& e : extensions) names += (names.empty() ? "" : ", ") + e;
-    return CLI::Validator(
-        [extensions, names](std::string& path) -> std::string {
-            const std::string ext = tools::extension_of(path);
-            for (const std::string& e : extensions)
-                if (ext == e) return {};
-            return "'" + path + "' should end in " + names;
-        },
-        "");
-}
-
 std::string id_list(const std::vector<int>& ids, std::size_t most) {
     std::string text;
     for (std::size_t i = 0; i < ids.size() && i < most; ++i) text += (i ? " " : "") + std::to_string(ids[i]);
@@ -58,9 +45,9 @@ int run(tools::Tool& tool) {
                    "The overlay: .vtu (ParaView, cell data patch, fine_face, colour), .ply (face colours) or .obj "
                    "(a group per patch)")
         ->required()
-        ->check(extension_validator({".vtu", ".ply", ".obj"}));
+        ->check(tools::extension_validator({".vtu", ".ply", ".obj"}));
     app.add_option("--curves", args.curves, "Also write the geodesics, one polyline per coarse edge: .vtp, .vtk or .obj")
-        ->check(extension_validator({".vtp", ".vtk", ".obj"}));
+        ->check(tools::extension_validator({".vtp", ".vtk", ".obj"}));
     app.add_option("--fine", args.fine, "The fine mesh, instead of the path that IN holds")->check(CLI::ExistingFile);
     tool.parse();
 

@@ -44,11 +44,7 @@ int run(tools::Tool& tool) {
         ->check(CLI::ExistingFile);
     app.add_option("-o,--output", args.output, "The geodesic triangulation: .gtri")
         ->required()
-        ->check(CLI::Validator(
-            [](std::string& path) -> std::string {
-                return tools::extension_of(path) == ".gtri" ? std::string() : "'" + path + "' should end in .gtri";
-            },
-            ""));
+        ->check(tools::extension_validator({".gtri"}));
     tool.parse();
 
     tools::Progress progress(tool.program(), tool.verbose());

@@ -67,6 +67,11 @@ void AtomicFile::write_int(long long value) {
     write(text, static_cast<std::size_t>(r.ptr - text));
 }
 
+std::FILE* AtomicFile::stream() {
+    flush();
+    return file_;
+}
+
 void AtomicFile::flush() {
     if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
         fail("cannot write", errno);

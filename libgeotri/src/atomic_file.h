@@ -1,5 +1,6 @@
 #pragma once
-// Private to libgeotri: an output file that appears under its name only once it is complete.
+// Private to libgeotri (and to tools/common, which writes the tools' files with it): an output file that appears
+// under its name only once it is complete.
 
 #include <cstddef>
 #include <cstdio>
@@ -23,6 +24,9 @@ public:
     /// Appends `value` as printf's "%.17g" would, which reads back as the same double.
     void write_double(double value);
     void write_int(long long value);
+    /// The open temporary file, for printf-style writing, after the buffered writes have gone to it. Valid until
+    /// commit(); writes through it and through write() may be mixed and keep their order.
+    std::FILE* stream();
 
     /// Flushes, closes and renames the temporary file over the target.
     void commit();

@@ -62,6 +62,18 @@ void check_mesh(const std::string& path, const MeshData& mesh) {
     }
 }
 
+void write_point_lines(AtomicFile& out, std::string_view prefix, const std::vector<Eigen::Vector3d>& points) {
+    for (const Eigen::Vector3d& p : points) {
+        out.write(prefix);
+        out.write_double(p.x());
+        out.write(" ");
+        out.write_double(p.y());
+        out.write(" ");
+        out.write_double(p.z());
+        out.write("\n");
+    }
+}
+
 }  // namespace detail
 
 MeshData read_mesh(const std::string& path) {
@@ -104,49 +116,31 @@ void check_for_writing(const std::string& path, const MeshData& mesh) {
     }
 }
 
+/// The vertex and face lines of OFF and OBJ: "VERTEX_PREFIX x y z" per vertex, then "FACE_PREFIX a b c" per
+/// triangle with the vertices counted from `first_index`.
+void write_vertex_and_face_lines(detail::AtomicFile& out, const MeshData& mesh, std::string_view vertex_prefix,
+                                 std::string_view face_prefix, long long first_index) {
+    detail::write_point_lines(out, vertex_prefix, mesh.positions);
+    for (const std::array<int, 3>& t : mesh.triangles) {
+        out.write(face_prefix);
+        for (const int v : t) {
+            out.write(" ");
+            out.write_int(v + first_index);
+        }
+        out.write("\n");
+    }
+}
+
 void write_off(detail::AtomicFile& out, const MeshData& mesh) {
     out.write("OFF\n");
     out.write_int(static_cast<long long>(mesh.positions.size()));
     out.write(" ");
     out.write_int(static_cast<long long>(mesh.triangles.size()));
     out.write(" 0\n");
-    for (const Eigen::Vector3d& p : mesh.positions) {
-        out.write_double(p.x());
-        out.write(" ");
-        out.write_double(p.y());
-        out.write(" ");
-        out.write_double(p.z());
-        out.write("\n");
-    }
-    for (const std::array<int, 3>& t : mesh.triangles) {
-        out.write("3");
-        for (const int v : t) {
-            out.write(" ");
-            out.write_int(v);
-        }
-        out.write("\n");
-    }
+    write_vertex_and_face_lines(out, mesh, "", "3", 0);
 }
 
-void write_obj(detail::AtomicFile& out, const MeshData& mesh) {
-    for (const Eigen::Vector3d& p : mesh.positions) {
-        out.write("v ");
-        out.write_double(p.x());
-        out.write(" ");
-        out.write_double(p.y());
-        out.write(" ");
-        out.write_double(p.z());
-        out.write("\n");
-    }
-    for (const std::array<int, 3>& t : mesh.triangles) {
-        out.write("f");
-        for (const int v : t) {
-            out.write(" ");
-            out.write_int(static_cast<long long>(v) + 1);
-        }
-        out.write("\n");
-    }
-}
+void write_obj(detail::AtomicFile& out, const MeshData& mesh) { write_vertex_and_face_lines(out, mesh, "v ", "f", 1); }
 
 template <typename T>
 void write_little_endian(detail::AtomicFile& out, T value) {

@@ -1,5 +1,6 @@
 #pragma once
-// Private to libgeotri: the pieces shared by the exact mesh readers in read_*.cpp and the writers in mesh_io.cpp.
+// Private to libgeotri: the pieces shared by the exact mesh readers in read_*.cpp and the writers in mesh_io.cpp and
+// overlay_io.cpp. tools/common uses extension_of() too.
 
 #include <geodesic/errors.h>
 #include <geotri/mesh_io.h>
@@ -14,6 +15,7 @@
 #include <string_view>
 #include <system_error>
 #include <type_traits>
+#include <vector>
 
 namespace geotri::detail {
 
@@ -132,6 +134,13 @@ bool parse_integer_token(std::string_view& s, T& value) {
 
 /// Lower-case extension with its dot (".ply"), or empty.
 std::string extension_of(const std::string& path);
+
+// ---- Text output ----------------------------------------------------------------------------------------------
+
+class AtomicFile;
+
+/// Writes one line "PREFIX x y z" per point, each coordinate as AtomicFile::write_double writes it.
+void write_point_lines(AtomicFile& out, std::string_view prefix, const std::vector<Eigen::Vector3d>& points);
 
 // ---- Binary values --------------------------------------------------------------------------------------------
 

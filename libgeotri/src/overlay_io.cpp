@@ -23,14 +23,6 @@ std::array<unsigned char, 3> colour_rgb(int colour) {
 
 namespace {
 
-void write_point(detail::AtomicFile& out, const Eigen::Vector3d& p) {
-    out.write_double(p.x());
-    out.write(" ");
-    out.write_double(p.y());
-    out.write(" ");
-    out.write_double(p.z());
-}
-
 void write_int_list(detail::AtomicFile& out, const std::vector<int>& values) {
     for (std::size_t i = 0; i < values.size(); ++i) {
         out.write(i % 16 == 0 ? "\n" : " ");
@@ -41,10 +33,7 @@ void write_int_list(detail::AtomicFile& out, const std::vector<int>& values) {
 
 void write_points_array(detail::AtomicFile& out, const std::vector<Eigen::Vector3d>& points) {
     out.write("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-    for (const Eigen::Vector3d& p : points) {
-        write_point(out, p);
-        out.write("\n");
-    }
+    detail::write_point_lines(out, "", points);
     out.write("</DataArray>\n</Points>\n");
 }
 
@@ -91,10 +80,7 @@ void write_ply(detail::AtomicFile& out, const Overlay& overlay) {
     out.write("property list uchar int vertex_indices\n");
     out.write("property uchar red\nproperty uchar green\nproperty uchar blue\n");
     out.write("property int patch\nproperty int fine_face\nend_header\n");
-    for (const Eigen::Vector3d& p : overlay.positions) {
-        write_point(out, p);
-        out.write("\n");
-    }
+    detail::write_point_lines(out, "", overlay.positions);
     for (std::size_t t = 0; t < overlay.triangles.size(); ++t) {
         out.write("3");
         for (int v : overlay.triangles[t]) {
@@ -115,11 +101,7 @@ void write_ply(detail::AtomicFile& out, const Overlay& overlay) {
 
 void write_obj(detail::AtomicFile& out, const Overlay& overlay) {
     out.write("# geotri overlay: one group per patch (coarse face)\n");
-    for (const Eigen::Vector3d& p : overlay.positions) {
-        out.write("v ");
-        write_point(out, p);
-        out.write("\n");
-    }
+    detail::write_point_lines(out, "v ", overlay.positions);
     std::vector<int> order(overlay.triangles.size());
     for (std::size_t t = 0; t < order.size(); ++t) order[t] = static_cast<int>(t);
     std::stable_sort(order.begin(), order.end(),
@@ -183,10 +165,7 @@ void write_vtp(detail::AtomicFile& out, const Curves& c) {
 void write_vtk(detail::AtomicFile& out, const Curves& c) {
     out.write("# vtk DataFile Version 3.0\ngeotri coarse edge polylines\nASCII\nDATASET POLYDATA\n");
     out.write("POINTS " + std::to_string(c.points.size()) + " double\n");
-    for (const Eigen::Vector3d& p : c.points) {
-        write_point(out, p);
-        out.write("\n");
-    }
+    detail::write_point_lines(out, "", c.points);
     out.write("LINES " + std::to_string(c.ranges.size()) + " " +
               std::to_string(c.points.size() + c.ranges.size()) + "\n");
     for (const auto& [first, last] : c.ranges) {
@@ -206,11 +185,7 @@ void write_vtk(detail::AtomicFile& out, const Curves& c) {
 
 void write_curves_obj(detail::AtomicFile& out, const Curves& c) {
     out.write("# geotri coarse edge polylines: one object edge_N per coarse edge N\n");
-    for (const Eigen::Vector3d& p : c.points) {
-        out.write("v ");
-        write_point(out, p);
-        out.write("\n");
-    }
+    detail::write_point_lines(out, "v ", c.points);
     for (std::size_t k = 0; k < c.ranges.size(); ++k) {
         out.write("o edge_" + std::to_string(c.edges[k]) + "\nl");
         for (int i = c.ranges[k].first; i < c.ranges[k].second; ++i) {

@@ -148,27 +148,18 @@ public:
     }
 
     double real(Type type) {
+        // Every integer type has at most 32 bits, so its value converts to double exactly.
+        if (is_integral(type)) return static_cast<double>(integer(type));
         need(size_of(type));
         double value = 0.0;
-        switch (type) {
-            case Type::int8: value = static_cast<std::int8_t>(*p_); break;
-            case Type::uint8: value = *p_; break;
-            case Type::int16: value = static_cast<std::int16_t>(load<std::uint16_t>()); break;
-            case Type::uint16: value = load<std::uint16_t>(); break;
-            case Type::int32: value = static_cast<std::int32_t>(load<std::uint32_t>()); break;
-            case Type::uint32: value = load<std::uint32_t>(); break;
-            case Type::float32: {
-                const std::uint32_t bits = load<std::uint32_t>();
-                float f = 0.0f;
-                std::memcpy(&f, &bits, sizeof f);
-                value = f;
-                break;
-            }
-            case Type::float64: {
-                const std::uint64_t bits = load<std::uint64_t>();
-                std::memcpy(&value, &bits, sizeof value);
-                break;
-            }
+        if (type == Type::float32) {
+            const std::uint32_t bits = load<std::uint32_t>();
+            float f = 0.0f;
+            std::memcpy(&f, &bits, sizeof f);
+            value = f;
+        } else {
+            const std::uint64_t bits = load<std::uint64_t>();
+            std::memcpy(&value, &bits, sizeof value);
         }
         p_ += size_of(type);
         return value;

@@ -9,6 +9,7 @@
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/trace.h>
 #include <geotri/validate.h>
+#include <geotri_test/fine_mesh.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
@@ -27,21 +28,12 @@ namespace {
 
 using geodesic::Mesh;
 using geodesic::SurfacePoint;
+using test::fine_of;
+using test::nearest_vertex;
 using OpenMesh::EdgeHandle;
 using OpenMesh::VertexHandle;
 
 constexpr double pi = 3.14159265358979323846;
-
-std::shared_ptr<const FineMesh> fine_of(const test::TriangleMesh& mesh) {
-    return std::make_shared<const FineMesh>(make_fine_mesh(MeshData{mesh.positions, mesh.triangles}, "procedural"));
-}
-
-int nearest_vertex(const Mesh& mesh, const Eigen::Vector3d& x) {
-    int best = 0;
-    for (int v = 1; v < mesh.num_vertices(); ++v)
-        if ((mesh.position(v) - x).squaredNorm() < (mesh.position(best) - x).squaredNorm()) best = v;
-    return best;
-}
 
 /// G with coarse vertices at the fine vertices nearest to `corners`, the given triangles (turned to face away from
 /// `centre`), traced by trace().
@@ -119,6 +111,13 @@ void expect_valid_with_area(const GeodesicTriangulation& g) {
     EXPECT_TRUE(r.valid) << describe(r);
     EXPECT_TRUE(r.overlay_checked);
     EXPECT_NEAR(r.patch_area, r.fine_area, 1e-9 * r.fine_area);
+}
+
+/// The coarse mesh of decimate() to at most `target_faces` faces.
+CoarseMesh decimated_coarse(const FineMesh& fine, std::size_t target_faces) {
+    DecimateOptions options;
+    options.target_faces = target_faces;
+    return make_coarse_mesh(decimate(fine, options).coarse, "decimated");
 }
 
 // ---- Corner angles ---------------------------------------------------------------------------------------------
@@ -255,9 +254,7 @@ int check_every_flip(const GeodesicTriangulation& g, int& region) {
 
 TEST(Flip, every_accepted_flip_of_a_decimated_sphere_leaves_g_valid) {
     auto fine = fine_of(test::perturbed_sphere(12, 0.02, 3));
-    DecimateOptions options;
-    options.target_faces = 40;
-    GeodesicTriangulation g(fine, make_coarse_mesh(decimate(*fine, options).coarse, "decimated"));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, 40));
     trace(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     int region = 0;
@@ -274,9 +271,7 @@ TEST(Flip, every_accepted_flip_of_a_traced_real_mesh_leaves_g_valid) {
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh flip test needs them";
     auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh("classic/bob_small.ply").path));
-    DecimateOptions options;
-    options.target_faces = 100;
-    GeodesicTriangulation g(fine, make_coarse_mesh(decimate(*fine, options).coarse, "decimated"));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, 100));
     trace(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     int region = 0;
@@ -322,16 +317,12 @@ void check_improve(std::shared_ptr<const FineMesh> fine, const CoarseMesh& coars
 
 TEST(FlipToDelaunay, angle_criterion_never_lowers_the_minimum_angle_and_terminates) {
     auto fine = fine_of(test::perturbed_sphere(12, 0.02, 5));
-    DecimateOptions options;
-    options.target_faces = 60;
-    check_improve(fine, make_coarse_mesh(decimate(*fine, options).coarse, "decimated"), FlipCriterion::angle);
+    check_improve(fine, decimated_coarse(*fine, 60), FlipCriterion::angle);
 }
 
 TEST(FlipToDelaunay, length_criterion_terminates_and_keeps_g_valid) {
     auto fine = fine_of(test::perturbed_sphere(12, 0.02, 5));
-    DecimateOptions options;
-    options.target_faces = 60;
-    check_improve(fine, make_coarse_mesh(decimate(*fine, options).coarse, "decimated"), FlipCriterion::length);
+    check_improve(fine, decimated_coarse(*fine, 60), FlipCriterion::length);
 }
 
 TEST(FlipToDelaunay, cube_with_skinny_triangles_is_improved) {

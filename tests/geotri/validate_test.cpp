@@ -8,6 +8,7 @@
 #include <geotri/tangent_angles.h>
 #include <geotri/trace.h>
 #include <geotri/validate.h>
+#include <geotri_test/fine_mesh.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
@@ -27,19 +28,10 @@ namespace {
 
 using geodesic::Mesh;
 using geodesic::SurfacePoint;
+using test::fine_of;
+using test::nearest_vertex;
 
 constexpr double pi = 3.14159265358979323846;
-
-std::shared_ptr<const FineMesh> fine_of(const test::TriangleMesh& mesh) {
-    return std::make_shared<const FineMesh>(make_fine_mesh(MeshData{mesh.positions, mesh.triangles}, "procedural"));
-}
-
-int nearest_vertex(const Mesh& mesh, const Eigen::Vector3d& x) {
-    int best = 0;
-    for (int v = 1; v < mesh.num_vertices(); ++v)
-        if ((mesh.position(v) - x).squaredNorm() < (mesh.position(best) - x).squaredNorm()) best = v;
-    return best;
-}
 
 /// A coarse mesh on the given fine vertices. Each triangle is turned to face away from `centre` (the test shapes
 /// are star-shaped about it), so that the coarse orientation agrees with T's.

@@ -317,4 +317,11 @@ double bounding_diagonal(const TriangleMesh& mesh) {
     return (hi - lo).norm();
 }
 
+int nearest_vertex(const geodesic::Mesh& mesh, const Eigen::Vector3d& x) {
+    int best = 0;
+    for (int v = 1; v < mesh.num_vertices(); ++v)
+        if ((mesh.position(v) - x).squaredNorm() < (mesh.position(best) - x).squaredNorm()) best = v;
+    return best;
+}
+
 }  // namespace geotri::test

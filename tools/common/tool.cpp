@@ -1,5 +1,7 @@
 #include "tool.h"
 
+#include "output.h"
+
 #include <geodesic/errors.h>
 
 #include <chrono>
@@ -71,6 +73,21 @@ int run_tool(const std::string& name, int argc, char** argv, const std::function
         report(program, "unexpected failure");
     }
     return k_exit_failure;
+}
+
+CLI::Validator extension_validator(std::vector<std::string> extensions, std::string names) {
+    if (names.empty()) {
+        for (const std::string& e : extensions) names += (names.empty() ? "" : ", ") + e;
+    }
+    return CLI::Validator(
+        [extensions, names](std::string& path) -> std::string {
+            const std::string ext = extension_of(path);
+            for (const std::string& e : extensions) {
+                if (ext == e) return {};
+            }
+            return "'" + path + "' should end in " + names;
+        },
+        "");
 }
 
 double now_seconds() {

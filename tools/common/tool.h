@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace geotri::tools {
 
@@ -48,6 +49,10 @@ private:
 /// error (with CLI11's message), or 1 for any exception, reported as one line
 /// `geotri-NAME: error: MESSAGE` on stderr. --help and --version print to stdout and return 0.
 int run_tool(const std::string& name, int argc, char** argv, const std::function<int(Tool&)>& body);
+
+/// A CLI11 check that a path ends in one of `extensions` (lower case, with the dot), in any case. It refuses any
+/// other path with "'PATH' should end in NAMES": `names` if given, else the extensions joined by ", ".
+CLI::Validator extension_validator(std::vector<std::string> extensions, std::string names = {});
 
 /// Seconds on a steady clock since an arbitrary start, for timings in summaries.
 double now_seconds();

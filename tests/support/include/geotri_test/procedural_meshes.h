@@ -76,4 +76,7 @@ TriangleMesh disjoint_union(const TriangleMesh& a, const TriangleMesh& b, const 
 /// Axis-aligned bounding box diagonal length.
 double bounding_diagonal(const TriangleMesh& mesh);
 
+/// The vertex of `mesh` nearest to `x` (the lowest index among equally near ones).
+int nearest_vertex(const geodesic::Mesh& mesh, const Eigen::Vector3d& x);
+
 }  // namespace geotri::test
