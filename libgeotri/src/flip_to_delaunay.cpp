@@ -66,8 +66,28 @@ struct Evaluation {
 /// result does not depend on the thread count.
 class Improver {
 public:
-    Improver(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result)
-        : g_(g), options_(options), result_(result), dirty_(g.coarse().n_edges(), 1) {}
+    /// Starts with every edge to evaluate, or only `edges` when given.
+    Improver(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
+             const std::vector<EdgeHandle>* edges = nullptr)
+        : g_(g), options_(options), result_(result), dirty_(g.coarse().n_edges(), edges ? 0 : 1) {
+        if (edges)
+            for (EdgeHandle e : *edges) dirty_.at(static_cast<std::size_t>(e.idx())) = 1;
+    }
+
+    /// Sweeps until one makes no flip or max_improve_passes is reached; counts into the result.
+    void run() {
+        int flips = 0, passes = 0;
+        do {
+            flips = sweep();
+            ++passes;
+            ++result_.improve_passes;
+            result_.improve_flips += flips;
+            if (options_.progress)
+                options_.progress("improve sweep " + std::to_string(result_.improve_passes) + ": " +
+                                  std::to_string(flips) + " flips");
+        } while (flips > 0 && passes < options_.max_improve_passes);
+        if (flips > 0) result_.pass_cap_reached = true;
+    }
 
     /// One sweep; returns the number of flips.
     int sweep() {
@@ -304,17 +324,7 @@ FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDela
             result.improve_skipped = true;
         } else {
             const GeodesicTriangulation before = g;
-            Improver improver(g, options, result);
-            int flips = 0;
-            do {
-                flips = improver.sweep();
-                ++result.improve_passes;
-                result.improve_flips += flips;
-                if (options.progress)
-                    options.progress("improve sweep " + std::to_string(result.improve_passes) + ": " +
-                                     std::to_string(flips) + " flips");
-            } while (flips > 0 && result.improve_passes < options.max_improve_passes);
-            result.pass_cap_reached = flips > 0;
+            Improver(g, options, result).run();
             if (result.improve_flips > 0) {
                 report = validate(g);
                 if (!report.valid) {
@@ -332,6 +342,14 @@ FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDela
     result.angles_after = corner_angle_stats(g);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
+}
+
+void improve_around(GeodesicTriangulation& g, const std::vector<EdgeHandle>& edges,
+                    const FlipToDelaunayOptions& options, FlipToDelaunayResult& result) {
+    for (EdgeHandle e : edges)
+        if (!e.is_valid() || static_cast<std::size_t>(e.idx()) >= g.coarse().n_edges())
+            throw InvalidInput("improve_around: not an edge of the coarse mesh");
+    Improver(g, options, result, &edges).run();
 }
 
 }  // namespace geotri

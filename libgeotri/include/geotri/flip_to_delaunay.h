@@ -83,4 +83,10 @@ struct FlipToDelaunayResult {
 /// count; untangle is sequential. Preconditions: every edge traced. Throws InvalidInput for a malformed G.
 FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDelaunayOptions& options = {});
 
+/// Improve only, starting from `edges` and going on with the edges that their flips change, on a G that the caller
+/// knows to be valid: no untangling and no validate(), so that it costs what the flips around `edges` cost. For
+/// operations that change G locally (refinement). Adds its counts to `result`'s improve fields.
+void improve_around(GeodesicTriangulation& g, const std::vector<OpenMesh::EdgeHandle>& edges,
+                    const FlipToDelaunayOptions& options, FlipToDelaunayResult& result);
+
 }  // namespace geotri

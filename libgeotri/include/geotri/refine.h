@@ -1,0 +1,51 @@
+#pragma once
+// Refinement of a valid G (issue 4): longest-edge bisection down to a geodesic edge length or a face count, then
+// Delaunay refinement to a minimum corner angle by inserting geodesic circumcentres. Every step is a split that
+// leaves G valid or is refused (split.h), and flips towards geodesic Delaunay follow each one.
+
+#include <geotri/flip_to_delaunay.h>
+#include <geotri/geodesic_triangulation.h>
+#include <geotri/validate.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace geotri {
+
+struct RefineOptions {
+    double max_length = 0.0;     ///< bisect until no edge is longer than this (0: no bound)
+    int target_faces = 0;        ///< bisect until G has at least this many faces (0: no target)
+    /// Then insert circumcentres until every corner angle is at least this, in degrees (0: none; at most 35).
+    /// Corners at points of T whose cone angle is below three times this are exempt: a vertex of degree three or
+    /// more there must have a smaller corner.
+    double min_angle_deg = 0.0;
+    /// Do not refine a triangle whose shortest edge is shorter than this (0: a tenth of the mean edge length of T), so
+    /// that refinement does not chase a needle of T with ever smaller triangles.
+    double min_edge_length = 0.0;
+    bool flip = true;            ///< flip towards geodesic Delaunay (angle criterion) around every new vertex
+    int max_new_vertices = 0;    ///< a guard (0: 20 times the faces of G, plus 1000)
+    /// Called now and then with a line saying where refinement is.
+    std::function<void(const std::string&)> progress;
+};
+
+struct RefineResult {
+    bool valid_before = false, valid_after = false;
+    std::vector<Violation> remaining;  ///< the violations left when G is invalid after (it should never be)
+    int edge_splits = 0;               ///< bisections, and circumcentres that fell on an edge
+    int face_splits = 0;               ///< circumcentres inserted inside a patch
+    int refused_splits = 0;            ///< splits that split_edge() or split_face() refused (G kept as it was)
+    int flips = 0;
+    int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
+    int small_corners_left = 0;        ///< other corners below the minimum angle, where refinement gave up
+    bool vertex_cap_reached = false;   ///< stopped at max_new_vertices
+    double longest_edge = 0.0;         ///< after
+    CornerAngleStats angles_before, angles_after;
+    double seconds = 0.0;
+};
+
+/// Refines G as `options` say. Throws InvalidInput when G is not valid (refinement keeps a valid G valid; make it
+/// valid first with flip_to_delaunay()) or when an option is out of range. Sequential and deterministic.
+RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options);
+
+}  // namespace geotri

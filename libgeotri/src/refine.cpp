@@ -1,0 +1,388 @@
+#include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
+#include <geotri/flip.h>
+#include <geotri/refine.h>
+#include <geotri/split.h>
+#include <geotri/straight_geodesic.h>
+#include <geotri/tangent_angles.h>
+
+#include "local_checks.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <set>
+
+namespace geotri {
+
+using OpenMesh::EdgeHandle;
+using OpenMesh::FaceHandle;
+using OpenMesh::HalfedgeHandle;
+using OpenMesh::VertexHandle;
+
+namespace {
+
+constexpr double k_pi = 3.14159265358979323846;
+constexpr double k_max_min_angle_deg = 35.0;
+// A vertex of T whose cone angle differs from 2π by more than this fraction of the minimum angle counts as curved:
+// refinement puts a coarse vertex on it when a circumcircle holds it. Triangles around it cannot be flat, and
+// circumcentres laid out as if they were chase it with ever smaller triangles. Gently curved vertices (scanned
+// surfaces have them everywhere) are left alone: snapping to them would itself make short edges.
+constexpr double k_curved_fraction = 1.0 / 3.0;
+// A circumcentre farther than this times the triangle's longest edge is not inserted.
+constexpr double k_max_radius_ratio = 4.0;
+// How many fine faces the search for a curved vertex near a circumcentre may look at.
+constexpr std::size_t k_max_search_faces = 2000;
+
+std::array<HalfedgeHandle, 3> halfedges_of(const CoarseMesh& coarse, FaceHandle f) {
+    const HalfedgeHandle h0 = coarse.halfedge_handle(f), h1 = coarse.next_halfedge_handle(h0);
+    return {h0, h1, coarse.next_halfedge_handle(h1)};
+}
+
+std::array<int, 3> vertices_of(const CoarseMesh& coarse, FaceHandle f) {
+    const auto h = halfedges_of(coarse, f);
+    return {coarse.from_vertex_handle(h[0]).idx(), coarse.from_vertex_handle(h[1]).idx(),
+            coarse.from_vertex_handle(h[2]).idx()};
+}
+
+/// The edges opposite v in its star: those that a new vertex's flips start from.
+std::vector<EdgeHandle> link_edges(const CoarseMesh& coarse, VertexHandle v) {
+    std::vector<EdgeHandle> edges;
+    for (HalfedgeHandle h : coarse.voh_range(v))
+        if (!coarse.is_boundary(h)) edges.push_back(coarse.edge_handle(coarse.next_halfedge_handle(h)));
+    return edges;
+}
+
+class Refiner {
+public:
+    Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result)
+        : g_(g), options_(options), result_(result), propagation_(g.fine().mesh) {
+        const geodesic::Mesh& mesh = g.fine().mesh;
+        double sum = 0.0;
+        for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
+        min_edge_ = options.min_edge_length > 0.0 ? options.min_edge_length : 0.1 * sum / mesh.num_halfedges();
+        budget_ = options.max_new_vertices > 0 ? options.max_new_vertices
+                                                : 20 * static_cast<int>(g.coarse().n_faces()) + 1000;
+        min_angle_ = options.min_angle_deg * k_pi / 180.0;
+        curved_ = k_curved_fraction * min_angle_;
+        // The flips after a split evaluate a handful of edges: one thread does them faster than a team, and the
+        // overlay that the in-region fallback needs costs more than the flips it could add.
+        flip_options_.threads = 1;
+        flip_options_.region_fallback = false;
+        for (VertexHandle v : g.coarse().vertices())
+            if (g.location(v).kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(g.location(v).vertex);
+    }
+
+    void bisect() {
+        std::set<int> refused;
+        while (!cap_reached()) {
+            const CoarseMesh& coarse = g_.coarse();
+            EdgeHandle longest;
+            for (EdgeHandle e : coarse.edges())
+                if (!refused.count(e.idx()) && (!longest.is_valid() || g_.length(e) > g_.length(longest))) longest = e;
+            if (!longest.is_valid()) break;
+            const bool too_long = options_.max_length > 0.0 && g_.length(longest) > options_.max_length;
+            const bool too_few = options_.target_faces > 0 && static_cast<int>(coarse.n_faces()) < options_.target_faces;
+            if (!too_long && !too_few) break;
+            if (!split_edge_somewhere(longest)) refused.insert(longest.idx());
+            progress("bisection");
+        }
+    }
+
+    void raise_min_angle() {
+        if (!(min_angle_ > 0.0)) return;
+        std::set<std::array<int, 3>> given_up;
+        std::vector<std::array<int, 3>> cached_vertices;
+        std::vector<double> cached_min;  // per face: its smallest corner that is not exempt (or infinity)
+        while (!cap_reached()) {
+            const CoarseMesh& coarse = g_.coarse();
+            cached_vertices.resize(coarse.n_faces(), {-1, -1, -1});
+            cached_min.resize(coarse.n_faces());
+            FaceHandle worst;
+            for (FaceHandle f : coarse.faces()) {
+                const std::size_t i = static_cast<std::size_t>(f.idx());
+                const std::array<int, 3> vertices = vertices_of(coarse, f);
+                if (vertices != cached_vertices[i]) {  // a split or a flip changed it
+                    cached_vertices[i] = vertices;
+                    cached_min[i] = smallest_corner(f);
+                }
+                if (cached_min[i] >= min_angle_ || given_up.count(vertices)) continue;
+                if (!worst.is_valid() || cached_min[i] < cached_min[static_cast<std::size_t>(worst.idx())]) worst = f;
+            }
+            if (!worst.is_valid()) break;
+            if (!refine_face(worst)) given_up.insert(vertices_of(coarse, worst));
+            progress("angle refinement");
+        }
+    }
+
+    /// Counts the corners below the minimum angle left: exempt ones, and the others.
+    void count_small_corners() {
+        if (!(min_angle_ > 0.0)) return;
+        for (FaceHandle f : g_.coarse().faces())
+            for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
+                if (corner_angle(g_, h) >= min_angle_) continue;
+                if (exempt(g_.coarse().from_vertex_handle(h))) ++result_.exempt_corners;
+                else ++result_.small_corners_left;
+            }
+    }
+
+private:
+    bool cap_reached() {
+        if (new_vertices_ < budget_) return false;
+        result_.vertex_cap_reached = true;
+        return true;
+    }
+
+    void progress(const char* stage) {
+        if (options_.progress && new_vertices_ % 50 == 0)
+            options_.progress(std::string(stage) + ": " + std::to_string(g_.coarse().n_faces()) + " faces");
+    }
+
+    bool exempt(VertexHandle v) const { return cone_angle(g_.fine().mesh, g_.location(v)) < 3.0 * min_angle_; }
+
+    /// The smallest corner of f that is not exempt, or infinity; infinity too for a face too small to refine.
+    double smallest_corner(FaceHandle f) const {
+        double smallest = std::numeric_limits<double>::infinity(), shortest = smallest;
+        for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
+            shortest = std::min(shortest, g_.length(g_.coarse().edge_handle(h)));
+            if (!exempt(g_.coarse().from_vertex_handle(h))) smallest = std::min(smallest, corner_angle(g_, h));
+        }
+        return shortest < min_edge_ ? std::numeric_limits<double>::infinity() : smallest;
+    }
+
+    SplitOptions split_options(bool region_fallback) {
+        SplitOptions options;
+        options.propagation = &propagation_;
+        options.region_fallback = region_fallback;
+        return options;
+    }
+
+    /// Does `split` (one of split_edge() or split_face() on the G it is given) on a copy of G, then the flips around
+    /// the new vertex, and keeps the result when the corners of the faces at the new vertex are no smaller than
+    /// `floor` (radians). A split that makes a worse corner than the one it mends is what lets refinement chase its
+    /// own tail. Returns whether G changed.
+    template <class Split>
+    bool try_split(Split split, double floor, int& counter) {
+        GeodesicTriangulation trial = g_;
+        const SplitResult done = split(trial);
+        FlipToDelaunayResult flips;
+        if (done.done && options_.flip) improve_around(trial, link_edges(trial.coarse(), done.vertex), flip_options_, flips);
+        if (!done.done || smallest_corner_around(trial, done.vertex) < floor) {
+            ++result_.refused_splits;
+            return false;
+        }
+        g_ = std::move(trial);
+        ++counter;
+        ++new_vertices_;
+        result_.flips += flips.improve_flips;
+        return true;
+    }
+
+    static double smallest_corner_around(const GeodesicTriangulation& g, VertexHandle v) {
+        double smallest = std::numeric_limits<double>::infinity();
+        for (FaceHandle f : g.coarse().vf_range(v))
+            for (HalfedgeHandle h : halfedges_of(g.coarse(), f)) smallest = std::min(smallest, corner_angle(g, h));
+        return smallest;
+    }
+
+    /// Half the smallest corner of the faces at e: no edge split may make a corner below it (as longest-edge
+    /// bisection guarantees).
+    double floor_at(EdgeHandle e) const {
+        double smallest = std::numeric_limits<double>::infinity();
+        for (int side = 0; side < 2; ++side) {
+            const FaceHandle f = g_.coarse().face_handle(g_.coarse().halfedge_handle(e, side));
+            if (!f.is_valid()) continue;
+            for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) smallest = std::min(smallest, corner_angle(g_, h));
+        }
+        return 0.5 * smallest;
+    }
+
+    /// Splits e at its midpoint (or, when that is refused, at 0.4 or 0.6 of it); false when every one is refused.
+    bool split_edge_somewhere(EdgeHandle e, bool region_fallback = true) {
+        const double floor = floor_at(e);
+        for (double fraction : {0.5, 0.4, 0.6}) {
+            auto split = [&](GeodesicTriangulation& trial) {
+                return split_edge(trial, e, fraction, split_options(region_fallback));
+            };
+            if (try_split(split, floor, result_.edge_splits)) return true;
+        }
+        return false;
+    }
+
+    /// The circumcentre of f, found on T by walking straight from a corner of f in the direction that the
+    /// triangle's intrinsic layout (its three geodesic lengths) gives, scaled to the corner's true angle.
+    struct Centre {
+        SurfacePoint point;
+        double radius;
+    };
+    std::optional<Centre> circumcentre(FaceHandle f) const {
+        const CoarseMesh& coarse = g_.coarse();
+        const auto h = halfedges_of(coarse, f);
+        std::array<double, 3> length{};
+        for (std::size_t i = 0; i < 3; ++i) length[i] = g_.length(coarse.edge_handle(h[i]));
+        // From the corner where the circumcentre's direction lies deepest inside the corner.
+        int best = -1;
+        double best_margin = 0.0, best_direction = 0.0, best_radius = 0.0;
+        for (std::size_t i = 0; i < 3; ++i) {
+            const double ab = length[i], bc = length[(i + 1) % 3], ca = length[(i + 2) % 3];
+            const double cosine = (ab * ab + ca * ca - bc * bc) / (2.0 * ab * ca);
+            const double layout_angle = std::acos(std::clamp(cosine, -1.0, 1.0));
+            const double cx = ca * std::cos(layout_angle), cy = ca * std::sin(layout_angle);
+            if (!(cy > 0.0)) continue;
+            const double ux = 0.5 * ab, uy = (ca * ca - ab * cx) / (2.0 * cy);
+            const double phi = std::atan2(uy, ux);
+            const double margin = std::min(phi, layout_angle - phi);
+            if (margin > best_margin) {
+                const double corner = corner_angle(g_, h[i]);
+                best = static_cast<int>(i);
+                best_margin = margin;
+                best_direction = detail::start_direction(g_, h[i]) + phi * corner / layout_angle;
+                best_radius = std::hypot(ux, uy);
+            }
+        }
+        // A nearly flat triangle's circumcentre is far away and of no use: its longest edge is split instead.
+        if (best < 0 || best_radius > k_max_radius_ratio * *std::max_element(length.begin(), length.end()))
+            return std::nullopt;
+        const SurfacePoint& start = g_.location(coarse.from_vertex_handle(h[static_cast<std::size_t>(best)]));
+        const double theta = cone_angle(g_.fine().mesh, start);
+        const StraightGeodesicResult walk =
+            trace_straight_geodesic(g_.fine().mesh, start, std::fmod(best_direction, theta), best_radius);
+        if (walk.stopped_at_boundary) return std::nullopt;
+        return Centre{walk.end, best_radius};
+    }
+
+    /// Inserts f's circumcentre (inside f's patch or a neighbour's), or else splits f's edges, longest first.
+    bool refine_face(FaceHandle f) {
+        const CoarseMesh& coarse = g_.coarse();
+        const auto h = halfedges_of(coarse, f);
+        if (const std::optional<Centre> centre = circumcentre(f)) {
+            std::vector<FaceHandle> around{f};
+            for (HalfedgeHandle x : h) {
+                const FaceHandle other = coarse.face_handle(coarse.opposite_halfedge_handle(x));
+                if (other.is_valid()) around.push_back(other);
+            }
+            // A curved vertex of T inside the circumcircle goes in first: between curved vertices of T that are
+            // not coarse vertices, circumcentres can chase each other down to ever smaller triangles.
+            const double floor = 0.5 * smallest_corner(f);
+            if (const std::optional<int> cone = curved_vertex_near(centre->point, centre->radius)) {
+                if (insert_in_one_of(around, SurfacePoint::at_vertex(*cone), floor)) return true;
+            }
+            if (insert_in_one_of(around, centre->point, floor)) return true;
+        }
+        std::array<EdgeHandle, 3> edges{coarse.edge_handle(h[0]), coarse.edge_handle(h[1]), coarse.edge_handle(h[2])};
+        std::stable_sort(edges.begin(), edges.end(),
+                         [&](EdgeHandle a, EdgeHandle b) { return g_.length(a) > g_.length(b); });
+        for (bool region_fallback : {false, true})
+            for (EdgeHandle e : edges)
+                if (split_edge_somewhere(e, region_fallback)) return true;
+        return false;
+    }
+
+    /// Splits the first of `faces` whose patch holds p strictly inside, with no new corner below `floor`; false
+    /// when none does.
+    bool insert_in_one_of(const std::vector<FaceHandle>& faces, const SurfacePoint& p, double floor) {
+        for (FaceHandle candidate : faces) {
+            auto split = [&](GeodesicTriangulation& trial) {
+                return split_face(trial, candidate, p, split_options(false));
+            };
+            if (try_split(split, floor, result_.face_splits)) {
+                if (p.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(p.vertex);
+                return true;
+            }
+        }
+        return false;
+    }
+
+    /// The curved vertex of T nearest to p within Euclidean distance `radius`, that no coarse
+    /// vertex sits on yet. A search over the fine faces near p.
+    std::optional<int> curved_vertex_near(const SurfacePoint& p, double radius) const {
+        const geodesic::Mesh& mesh = g_.fine().mesh;
+        const Eigen::Vector3d x = mesh.point(p);
+        std::vector<int> stack, seen_faces;
+        auto visit = [&](int f) {
+            if (std::find(seen_faces.begin(), seen_faces.end(), f) != seen_faces.end()) return;
+            seen_faces.push_back(f);
+            double nearest = std::numeric_limits<double>::infinity(), longest = 0.0;
+            for (int i = 0; i < 3; ++i) {
+                nearest = std::min(nearest, (mesh.position(mesh.triangle(f)[i]) - x).norm());
+                longest = std::max(longest, mesh.length(3 * f + i));
+            }
+            if (nearest <= radius + longest) stack.push_back(f);
+        };
+        switch (p.kind) {
+        case geodesic::PointKind::vertex:
+            for (int h : mesh.outgoing_halfedges(p.vertex)) visit(geodesic::Mesh::face_of(h));
+            break;
+        case geodesic::PointKind::edge:
+            for (int h : {mesh.find_halfedge(p.edge_v0, p.edge_v1), mesh.find_halfedge(p.edge_v1, p.edge_v0)})
+                if (h >= 0) visit(geodesic::Mesh::face_of(h));
+            break;
+        case geodesic::PointKind::face: visit(p.face); break;
+        }
+        std::optional<int> best;
+        double best_distance = radius;
+        while (!stack.empty() && seen_faces.size() < k_max_search_faces) {
+            const int f = stack.back();
+            stack.pop_back();
+            for (int i = 0; i < 3; ++i) {
+                const int v = mesh.triangle(f)[i];
+                const double d = (mesh.position(v) - x).norm();
+                if (d < best_distance && std::abs(mesh.cone_angle(v) - 2.0 * k_pi) > curved_ &&
+                    !coarse_at_fine_vertex_.count(v)) {
+                    best = v;
+                    best_distance = d;
+                }
+                const int twin = mesh.twin(3 * f + i);
+                if (twin >= 0) visit(geodesic::Mesh::face_of(twin));
+            }
+        }
+        return best;
+    }
+
+    GeodesicTriangulation& g_;
+    const RefineOptions& options_;
+    RefineResult& result_;
+    geodesic::ExactGeodesic propagation_;
+    FlipToDelaunayOptions flip_options_;
+    std::set<int> coarse_at_fine_vertex_;  ///< the vertices of T that coarse vertices sit on
+    double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
+    int budget_ = 0, new_vertices_ = 0;
+};
+
+}  // namespace
+
+RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    if (!(options.max_length >= 0.0) || !std::isfinite(options.max_length))
+        throw InvalidInput("refine: the maximum length must be a finite number >= 0");
+    if (options.target_faces < 0) throw InvalidInput("refine: the face count must be >= 0");
+    if (!(options.min_angle_deg >= 0.0 && options.min_angle_deg <= k_max_min_angle_deg))
+        throw InvalidInput("refine: the minimum angle must be in [0, 35] degrees");
+    if (!(options.min_edge_length >= 0.0) || !std::isfinite(options.min_edge_length))
+        throw InvalidInput("refine: the minimum edge length must be a finite number >= 0");
+    RefineResult result;
+    const ValidationReport before = validate(g);
+    result.valid_before = before.valid;
+    if (!before.valid)
+        throw InvalidInput("refine: G is not valid (" + std::to_string(before.violations.size()) +
+                           " violations); make it valid first (geotri-flip)");
+    result.angles_before = corner_angle_stats(g);
+
+    Refiner refiner(g, options, result);
+    refiner.bisect();
+    refiner.raise_min_angle();
+    refiner.count_small_corners();
+
+    const ValidationReport after = validate(g);
+    result.valid_after = after.valid;
+    if (!after.valid) result.remaining = after.violations;
+    result.angles_after = corner_angle_stats(g);
+    for (EdgeHandle e : g.coarse().edges()) result.longest_edge = std::max(result.longest_edge, g.length(e));
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace geotri

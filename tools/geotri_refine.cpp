@@ -1,0 +1,130 @@
+// geotri-refine: refines a valid geodesic triangulation by longest-edge bisection (to a geodesic edge length or a
+// face count) and then by inserting circumcentres (to a minimum corner angle), and writes the result (issue 4).
+//
+//   geotri-refine IN.gtri -o OUT.gtri [--max-length L] [--faces N] [--min-angle A] [--no-flip] [--fine PATH]
+//                 [--quiet] [--json]
+//
+// Exit codes: 0 when OUT is valid, 3 when OUT is written but invalid, 1 bad input (an invalid IN among it),
+// 2 usage error.
+
+#include "output.h"
+#include "progress.h"
+#include "tool.h"
+
+#include <geodesic/errors.h>
+#include <geotri/gtri_io.h>
+#include <geotri/refine.h>
+
+#include <cstdio>
+#include <string>
+
+namespace {
+
+namespace tools = geotri::tools;
+
+constexpr int k_exit_invalid = 3;
+
+int run(tools::Tool& tool) {
+    CLI::App& app = tool.app;
+    app.description("Refines a valid geodesic triangulation (.gtri): splits the longest edge at its geodesic midpoint\n"
+                    "until no edge is longer than --max-length and G has --faces faces, then inserts circumcentres\n"
+                    "until every corner angle is at least --min-angle. Every new edge is an exact geodesic, and G\n"
+                    "stays valid after every step. Exit code 0 if the result is valid, 3 if it is written but invalid.\n"
+                    "Example: geotri-refine bone.flip.gtri -o bone.fine.gtri --min-angle 25");
+    std::string input, output, fine_override;
+    geotri::RefineOptions options;
+    bool no_flip = false;
+    app.add_option("IN", input, "The geodesic triangulation, valid (geotri-flip makes it so): .gtri")
+        ->required()
+        ->check(CLI::ExistingFile);
+    app.add_option("-o,--output", output, "The refined geodesic triangulation: .gtri")
+        ->required()
+        ->check(tools::extension_validator({".gtri"}));
+    app.add_option("--max-length", options.max_length,
+                   "Bisect until no edge is longer than this geodesic length (default: no bound)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--faces", options.target_faces, "Bisect until G has at least this many faces (default: none)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--min-angle", options.min_angle_deg,
+                   "Then refine until every corner angle is at least this many degrees, at most 35 (default: none);\n"
+                   "corners at points of T whose cone angle is below three times it are exempt")
+        ->check(CLI::Range(0.0, 35.0));
+    app.add_flag("--no-flip", no_flip, "Do not flip towards geodesic Delaunay around new vertices");
+    app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
+        ->check(CLI::ExistingFile);
+    tool.parse();
+    if (options.max_length == 0.0 && options.target_faces == 0 && options.min_angle_deg == 0.0)
+        throw CLI::ValidationError("give at least one of --max-length, --faces and --min-angle");
+    options.flip = !no_flip;
+
+    tools::Progress progress(tool.program(), tool.verbose());
+    progress.stage("loading " + input);
+    const double load_start = tools::now_seconds();
+    geotri::GeodesicTriangulation g = geotri::read_gtri(input, fine_override);
+    const double load_seconds = tools::now_seconds() - load_start;
+    const std::size_t faces_before = g.coarse().n_faces();
+
+    options.progress = [&progress](const std::string& where) { progress.stage(where); };
+    progress.stage("refining");
+    geotri::RefineResult r;
+    try {
+        r = geotri::refine(g, options);
+    } catch (const geotri::InvalidInput& e) {
+        throw geotri::InvalidInput(input + ": " + e.what());
+    }
+
+    progress.stage("writing " + output);
+    const double write_start = tools::now_seconds();
+    geotri::write_gtri(output, g);
+    const double write_seconds = tools::now_seconds() - write_start;
+    progress.clear();
+
+    if (tool.common.json) {
+        tools::JsonSummary summary;
+        summary.add("input", input);
+        summary.add("output", output);
+        summary.add("faces_before", faces_before);
+        summary.add("vertices", g.coarse().n_vertices());
+        summary.add("edges", g.coarse().n_edges());
+        summary.add("faces", g.coarse().n_faces());
+        summary.add("valid", r.valid_after);
+        summary.add("edge_splits", r.edge_splits);
+        summary.add("face_splits", r.face_splits);
+        summary.add("refused_splits", r.refused_splits);
+        summary.add("flips", r.flips);
+        summary.add("exempt_corners", r.exempt_corners);
+        summary.add("small_corners_left", r.small_corners_left);
+        summary.add("vertex_cap_reached", r.vertex_cap_reached);
+        summary.add("longest_edge", r.longest_edge);
+        summary.add("min_corner_angle_deg_before", r.angles_before.min_deg);
+        summary.add("mean_corner_angle_deg_before", r.angles_before.mean_deg);
+        summary.add("max_corner_angle_deg_before", r.angles_before.max_deg);
+        summary.add("min_corner_angle_deg", r.angles_after.min_deg);
+        summary.add("mean_corner_angle_deg", r.angles_after.mean_deg);
+        summary.add("max_corner_angle_deg", r.angles_after.max_deg);
+        summary.add("load_seconds", load_seconds);
+        summary.add("refine_seconds", r.seconds);
+        summary.add("write_seconds", write_seconds);
+        std::printf("%s\n", summary.str().c_str());
+        std::fflush(stdout);
+    }
+    if (tool.verbose()) {
+        const char* program = tool.program().c_str();
+        std::fprintf(stderr, "%s: %zu -> %zu faces: %d edge splits, %d circumcentres, %d flips, %d splits refused%s\n",
+                     program, faces_before, g.coarse().n_faces(), r.edge_splits, r.face_splits, r.flips,
+                     r.refused_splits, r.vertex_cap_reached ? "; stopped at the vertex cap" : "");
+        std::fprintf(stderr, "%s: corner angles: min %.4g -> %.4g, mean %.4g -> %.4g degrees; longest edge %.6g\n",
+                     program, r.angles_before.min_deg, r.angles_after.min_deg, r.angles_before.mean_deg,
+                     r.angles_after.mean_deg, r.longest_edge);
+        if (options.min_angle_deg > 0.0 && r.exempt_corners + r.small_corners_left > 0)
+            std::fprintf(stderr, "%s: %d corners below %g degrees at cone points that force them, %d where refinement "
+                                 "gave up\n",
+                         program, r.exempt_corners, options.min_angle_deg, r.small_corners_left);
+        std::fprintf(stderr, "%s: %s; refined in %.3f s\n", program, r.valid_after ? "valid" : "INVALID", r.seconds);
+    }
+    return r.valid_after ? tools::k_exit_ok : k_exit_invalid;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return tools::run_tool("refine", argc, argv, run); }
