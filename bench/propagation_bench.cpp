@@ -49,6 +49,7 @@ options:
   --no-cgal            never run CGAL
   --no-header          print no table header
   --label TEXT         name of the mesh in the table (default: the argument, without folders for files)
+  --dump FILE          write the vertex distances (%.17g, one a line) to FILE, for comparing builds; one mesh only
   -h, --help           this text
 )";
 
@@ -59,6 +60,7 @@ struct Options {
     bool cgal = true;
     bool header = true;
     std::string label;
+    std::string dump;
     std::vector<std::string> meshes;
 };
 
@@ -103,6 +105,8 @@ Options parse(int argc, char** argv) {
             options.header = false;
         } else if (arg == "--label") {
             options.label = value();
+        } else if (arg == "--dump") {
+            options.dump = value();
         } else if (!arg.empty() && arg[0] == '-') {
             usage_error("unknown option " + arg);
         } else {
@@ -111,6 +115,7 @@ Options parse(int argc, char** argv) {
     }
     if (options.meshes.empty()) usage_error("no mesh given");
     if (!options.label.empty() && options.meshes.size() > 1) usage_error("--label needs a single mesh");
+    if (!options.dump.empty() && options.meshes.size() > 1) usage_error("--dump needs a single mesh");
     return options;
 }
 
@@ -195,6 +200,12 @@ bool run_one(const std::string& spec, const Options& options) {
     const double ours = times[times.size() / 2];
     const std::vector<double> distances = propagation.vertex_distances();
     const auto stats = propagation.stats();
+    if (!options.dump.empty()) {
+        std::FILE* file = std::fopen(options.dump.c_str(), "w");
+        if (file == nullptr) throw geotri::IOError("cannot write " + options.dump);
+        for (double d : distances) std::fprintf(file, "%.17g\n", d);
+        std::fclose(file);
+    }
     const double rss = peak_rss_mb();
 
     std::string cgal_time = "-", ratio = "-", difference = "-";

@@ -1,3 +1,4 @@
+#include "event_queue.h"
 #include "window.h"
 
 #include <geodesic/errors.h>
@@ -48,6 +49,15 @@ constexpr int k_merge_lookahead = 8;
 
 // Windows compared with each other on an edge: the most recent ones, which are those the wavefront brings together.
 constexpr int k_compare_lookahead = 4;
+
+/// A hint to start loading memory that will soon be read; no effect on results.
+inline void prefetch(const void* address) {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(address);
+#else
+    (void)address;
+#endif
+}
 
 /// How a vertex got its distance: from a source directly, along an edge from another vertex, or through a window.
 struct Predecessor {
@@ -119,10 +129,9 @@ private:
     std::vector<int> first_window_;  // per halfedge
     std::vector<int> touched_halfedges_;
     std::vector<Window> windows_;
-    std::vector<unsigned char> window_state_;  // per window: pending, propagated or merged into another
     std::vector<int> merged_pieces_;           // for merged windows: a count, then the ids of the pieces
     std::vector<int> merge_scratch_;
-    std::vector<std::pair<double, int>> queue_;  // min-heap; item >= 0 is a window, -1 - v a vertex emission
+    detail::EventQueue queue_;  // item >= 0 is a window, -1 - v a vertex emission
     std::vector<SurfacePoint> sources_;
     std::vector<StopPoint> stops_;
     std::vector<std::pair<int, int>> watches_;  // (halfedge, stop index), sorted
@@ -155,7 +164,6 @@ void ExactGeodesic::Impl::reset() {
     touched_vertices_.clear();
     touched_halfedges_.clear();
     windows_.clear();
-    window_state_.clear();
     merged_pieces_.clear();
     queue_.clear();
     sources_.clear();
@@ -166,8 +174,7 @@ void ExactGeodesic::Impl::reset() {
 }
 
 void ExactGeodesic::Impl::push_queue(double key, int item) {
-    queue_.emplace_back(key, item);
-    std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
+    queue_.push(key, item);
     ++stats_.queue_pushes;
     stats_.peak_queue_size = std::max(stats_.peak_queue_size, queue_.size());
 }
@@ -205,17 +212,24 @@ bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w) const {
     const double length = mesh_.length(h);
     const double slack = k_margin * (w.sigma + w.source().norm() + length);
     const double d_tail = distance_[mesh_.tail(h)];
+    const double d_head = distance_[mesh_.head(h)];
+    if (d_tail == k_infinity && d_head == k_infinity) return w.b0 < w.b1;
+    // The window's values at its ends, each computed once (square roots are not cheap) and again if the end moves.
+    double at_b0 = w.value_at(w.b0);
+    const double at_b1 = w.value_at(w.b1);
     if (d_tail < k_infinity) {
-        if (w.value_at(w.b1) > d_tail + w.b1 + slack) return false;
-        if (w.value_at(w.b0) > d_tail + w.b0 + slack) {
+        if (at_b1 > d_tail + w.b1 + slack) return false;
+        if (at_b0 > d_tail + w.b0 + slack) {
             const double x = vertex_takeover(w.sx, w.sy, w.sigma, d_tail, slack);
-            if (x > w.b0 && x < w.b1) w.b0 = x;
+            if (x > w.b0 && x < w.b1) {
+                w.b0 = x;
+                at_b0 = w.value_at(x);
+            }
         }
     }
-    const double d_head = distance_[mesh_.head(h)];
     if (d_head < k_infinity) {
-        if (w.value_at(w.b0) > d_head + (length - w.b0) + slack) return false;
-        if (w.value_at(w.b1) > d_head + (length - w.b1) + slack) {
+        if (at_b0 > d_head + (length - w.b0) + slack) return false;
+        if (at_b1 > d_head + (length - w.b1) + slack) {
             const double y = vertex_takeover(length - w.sx, w.sy, w.sigma, d_head, slack);
             if (length - y > w.b0 && length - y < w.b1) w.b1 = length - y;
         }
@@ -303,8 +317,8 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     const int id = static_cast<int>(windows_.size());
     if (w.next_on_edge < 0) touched_halfedges_.push_back(h);
     first_window_[h] = id;
+    w.state = k_pending;
     windows_.push_back(w);
-    window_state_.push_back(k_pending);
     ++stats_.windows_created;
     const double tolerance = k_cover * length;
     if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
@@ -335,13 +349,13 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     int looked = 0;
     for (int s = first_window_[w.halfedge]; s >= 0 && looked < k_merge_lookahead; s = windows_[s].next_on_edge) {
         ++looked;
-        if (window_state_[s] != k_pending || s == id) continue;
+        if (windows_[s].state != k_pending || s == id) continue;
         const Window& other = windows_[s];
         if (other.origin != w.origin || std::abs(other.sigma - w.sigma) > source_tolerance ||
             (other.source() - w.source()).norm() > source_tolerance)
             continue;
         if (other.b0 > b1 + gap_tolerance || other.b1 < b0 - gap_tolerance) continue;
-        window_state_[s] = k_merged;
+        windows_[s].state = k_merged;
         pieces.push_back(s);
         b0 = std::min(b0, other.b0);
         b1 = std::max(b1, other.b1);
@@ -353,11 +367,11 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     m.b1 = b1;
     m.parent = -2 - static_cast<int>(merged_pieces_.size());
     m.next_on_edge = first_window_[w.halfedge];
+    m.state = k_propagated;
     merged_pieces_.push_back(static_cast<int>(pieces.size()));
     merged_pieces_.insert(merged_pieces_.end(), pieces.begin(), pieces.end());
     first_window_[w.halfedge] = merged;
     windows_.push_back(m);
-    window_state_.push_back(k_propagated);
     stats_.windows_merged += pieces.size() - 1;
     return merged;
 }
@@ -380,8 +394,8 @@ int ExactGeodesic::Impl::piece_covering(int id, double x) const {
 }
 
 void ExactGeodesic::Impl::propagate_window(int popped) {
-    if (window_state_[popped] != k_pending) return;  // merged into another window
-    window_state_[popped] = k_propagated;
+    if (windows_[popped].state != k_pending) return;  // merged into another window
+    windows_[popped].state = k_propagated;
     if (!trim_by_end_vertices(windows_[popped]) || !trim_by_other_windows(windows_[popped], popped)) {
         ++stats_.windows_pruned;
         return;
@@ -710,10 +724,11 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
 
     std::vector<unsigned char> emitted_at_zero;  // a vertex source may be queued twice at distance 0
     while (!queue_.empty()) {
-        std::pop_heap(queue_.begin(), queue_.end(), std::greater<>());
-        const auto [key, item] = queue_.back();
-        queue_.pop_back();
+        const auto [key, item] = queue_.pop();
         ++stats_.queue_pops;
+        // The next window to pop has waited in the queue since it was made, so its data is out of cache: fetch
+        // it while this one is processed.
+        if (!queue_.empty() && queue_.top_item() >= 0) prefetch(&windows_[queue_.top_item()]);
         if (key > max_distance_) {
             stats_.stopped_early = true;
             break;
@@ -738,7 +753,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     }
     if (!stats_.stopped_early && !stops_.empty()) all_stops_settled(k_infinity);
     if (std::isfinite(max_distance_)) settled_radius_ = std::min(settled_radius_, max_distance_);
-    stats_.window_bytes = windows_.capacity() * (sizeof(Window) + 1) + merged_pieces_.capacity() * sizeof(int);
+    stats_.window_bytes = windows_.capacity() * sizeof(Window) + merged_pieces_.capacity() * sizeof(int);
 }
 
 double ExactGeodesic::Impl::vertex_distance(int v) const {

@@ -14,7 +14,8 @@ namespace geotri::geodesic::detail {
 
 constexpr double k_infinity = std::numeric_limits<double>::infinity();
 
-struct Window {
+/// Windows are looked up by id all over memory (edge lists, the queue): one cache line each, with room for the state.
+struct alignas(64) Window {
     double b0;
     double b1;
     double sx;
@@ -24,6 +25,7 @@ struct Window {
     int parent;        ///< the window this one was propagated from, or -1 if a vertex or a source emitted it
     int origin;        ///< the emitting vertex (>= 0) or -1 - source index; shared by every descendant
     int next_on_edge;  ///< next window on the same halfedge, or -1
+    unsigned char state = 0;  ///< the propagation's bookkeeping (pending, propagated, merged)
 
     Eigen::Vector2d source() const { return {sx, sy}; }
 
