@@ -107,12 +107,7 @@ int run(tools::Tool& tool) {
         summary.add("improve_skipped", r.improve_skipped);
         summary.add("pass_cap_reached", r.pass_cap_reached);
         summary.add("improve_reverted", r.improve_reverted);
-        summary.add("min_corner_angle_deg_before", r.angles_before.min_deg);
-        summary.add("mean_corner_angle_deg_before", r.angles_before.mean_deg);
-        summary.add("max_corner_angle_deg_before", r.angles_before.max_deg);
-        summary.add("min_corner_angle_deg", r.angles_after.min_deg);
-        summary.add("mean_corner_angle_deg", r.angles_after.mean_deg);
-        summary.add("max_corner_angle_deg", r.angles_after.max_deg);
+        tools::add_corner_angles(summary, r.angles_before, r.angles_after);
         summary.add("load_seconds", load_seconds);
         summary.add("flip_seconds", r.seconds);
         summary.add("write_seconds", write_seconds);

@@ -96,12 +96,7 @@ int run(tools::Tool& tool) {
         summary.add("small_corners_left", r.small_corners_left);
         summary.add("vertex_cap_reached", r.vertex_cap_reached);
         summary.add("longest_edge", r.longest_edge);
-        summary.add("min_corner_angle_deg_before", r.angles_before.min_deg);
-        summary.add("mean_corner_angle_deg_before", r.angles_before.mean_deg);
-        summary.add("max_corner_angle_deg_before", r.angles_before.max_deg);
-        summary.add("min_corner_angle_deg", r.angles_after.min_deg);
-        summary.add("mean_corner_angle_deg", r.angles_after.mean_deg);
-        summary.add("max_corner_angle_deg", r.angles_after.max_deg);
+        tools::add_corner_angles(summary, r.angles_before, r.angles_after);
         summary.add("load_seconds", load_seconds);
         summary.add("refine_seconds", r.seconds);
         summary.add("write_seconds", write_seconds);

@@ -193,25 +193,23 @@ SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, 
     // m-c runs in the patch of (a, b, c), on the left of a->b: counter-clockwise at m from m->b to m->a, and at c
     // from c->a to c->b. m-d runs in the patch of (b, a, d): at m from m->a to m->b, and at d from d->b to d->a.
     const double towards_a = polar_angle(mesh, to_a[0], to_a[1]), towards_b = polar_angle(mesh, to_b[0], to_b[1]);
-    std::vector<Spoke> spokes(2);
-    Spoke& to_c = spokes[0];
-    to_c.to = c;
-    to_c.patch = coarse.face_handle(ab).idx();
-    to_c.has_wedge = true;
-    to_c.wedge_from = towards_b;
-    to_c.wedge_to = towards_a;
-    to_c.corner_from = ca;
-    to_c.corner_to = coarse.opposite_halfedge_handle(bc);
-    to_c.around = {{to_a, 0, "m-a"}, {to_b, 0, "m-b"}, {g.path(ca), 1, "c-a"}, {g.path(to_c.corner_to), 1, "c-b"}};
-    Spoke& to_d = spokes[1];
-    to_d.to = d;
-    to_d.patch = coarse.face_handle(ba).idx();
-    to_d.has_wedge = true;
-    to_d.wedge_from = towards_a;
-    to_d.wedge_to = towards_b;
-    to_d.corner_from = db;
-    to_d.corner_to = coarse.opposite_halfedge_handle(ad);
-    to_d.around = {{to_a, 0, "m-a"}, {to_b, 0, "m-b"}, {g.path(db), 1, "d-b"}, {g.path(to_d.corner_to), 1, "d-a"}};
+    auto spoke = [&](VertexHandle to, HalfedgeHandle side, double wedge_from, double wedge_to, HalfedgeHandle corner_from,
+                     HalfedgeHandle corner_to, const char* from_name, const char* to_name) {
+        Spoke s;
+        s.to = to;
+        s.patch = coarse.face_handle(side).idx();
+        s.has_wedge = true;
+        s.wedge_from = wedge_from;
+        s.wedge_to = wedge_to;
+        s.corner_from = corner_from;
+        s.corner_to = corner_to;
+        s.around = {{to_a, 0, "m-a"}, {to_b, 0, "m-b"}, {g.path(corner_from), 1, from_name},
+                    {g.path(corner_to), 1, to_name}};
+        return s;
+    };
+    std::vector<Spoke> spokes{
+        spoke(c, ab, towards_b, towards_a, ca, coarse.opposite_halfedge_handle(bc), "c-a", "c-b"),
+        spoke(d, ba, towards_a, towards_b, db, coarse.opposite_halfedge_handle(ad), "d-b", "d-a")};
 
     const std::string why = find_spokes(g, m, spokes, options);
     if (!why.empty()) {

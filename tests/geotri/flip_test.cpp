@@ -10,6 +10,7 @@
 #include <geotri/trace.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
+#include <geotri_test/g_checks.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
@@ -28,6 +29,9 @@ namespace {
 
 using geodesic::Mesh;
 using geodesic::SurfacePoint;
+using test::decimated_coarse;
+using test::describe;
+using test::expect_valid_with_area;
 using test::fine_of;
 using test::nearest_vertex;
 using OpenMesh::EdgeHandle;
@@ -97,28 +101,7 @@ Snapshot snapshot(const GeodesicTriangulation& g) {
     return s;
 }
 
-std::string describe(const ValidationReport& r) {
-    std::string s;
-    for (const Violation& v : r.violations) s += "  [" + std::to_string(v.condition) + "] " + v.what + "\n";
-    return s;
-}
-
 int total(const std::array<int, 4>& c) { return c[0] + c[1] + c[2] + c[3]; }
-
-/// Valid with the overlay, and the patch areas sum to the area of T within 1e-9 relative.
-void expect_valid_with_area(const GeodesicTriangulation& g) {
-    const ValidationReport r = validate(g);
-    EXPECT_TRUE(r.valid) << describe(r);
-    EXPECT_TRUE(r.overlay_checked);
-    EXPECT_NEAR(r.patch_area, r.fine_area, 1e-9 * r.fine_area);
-}
-
-/// The coarse mesh of decimate() to at most `target_faces` faces.
-CoarseMesh decimated_coarse(const FineMesh& fine, std::size_t target_faces) {
-    DecimateOptions options;
-    options.target_faces = target_faces;
-    return make_coarse_mesh(decimate(fine, options).coarse, "decimated");
-}
 
 // ---- Corner angles ---------------------------------------------------------------------------------------------
 

@@ -10,6 +10,8 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -82,7 +84,7 @@ protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir_ = fs::temp_directory_path() / ("geotri_gtri_io_" + std::string(info->name()) + "_" +
-                                            std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+                                            std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_ / "meshes");
         fs::create_directories(dir_ / "out");

@@ -10,6 +10,7 @@
 #include <geotri/trace.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
+#include <geotri_test/g_checks.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
@@ -26,41 +27,15 @@ namespace {
 
 using OpenMesh::EdgeHandle;
 using OpenMesh::VertexHandle;
+using test::describe;
+using test::expect_valid_with_area;
+using test::unit_cube_g;
 
 constexpr double pi = 3.14159265358979323846;
 
-std::string describe(const ValidationReport& r) {
-    std::string s;
-    for (const Violation& v : r.violations) s += "  [" + std::to_string(v.condition) + "] " + v.what + "\n";
-    return s;
-}
-
-void expect_valid_with_area(const GeodesicTriangulation& g) {
-    const ValidationReport r = validate(g);
-    EXPECT_TRUE(r.valid) << describe(r);
-    EXPECT_TRUE(r.overlay_checked);
-    EXPECT_NEAR(r.patch_area, r.fine_area, 1e-9 * r.fine_area);
-}
-
-/// The unit cube (each side a 4 x 4 grid of squares) with G = the cube's eight corners and one diagonal per side.
-GeodesicTriangulation cube_g() {
-    auto fine = test::fine_of(test::cube(4));
-    MeshData data;
-    for (int k = 0; k < 8; ++k)
-        data.positions.push_back(
-            fine->mesh.position(test::nearest_vertex(fine->mesh, Eigen::Vector3d(k & 1, k >> 1 & 1, k >> 2 & 1))));
-    data.triangles = {{0, 3, 1}, {0, 2, 3}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                      {2, 7, 3}, {2, 6, 7}, {0, 6, 2}, {0, 4, 6}, {1, 3, 7}, {1, 7, 5}};
-    GeodesicTriangulation g(fine, make_coarse_mesh(data, "cube"));
-    trace(g);
-    return g;
-}
-
 GeodesicTriangulation traced(const std::string& path, std::size_t faces) {
     auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
-    DecimateOptions options;
-    options.target_faces = faces;
-    GeodesicTriangulation g(fine, make_coarse_mesh(decimate(*fine, options).coarse, "decimated"));
+    GeodesicTriangulation g(fine, test::decimated_coarse(*fine, faces));
     trace(g);
     return g;
 }
@@ -75,7 +50,7 @@ std::vector<Polyline> polylines_of(const GeodesicTriangulation& g) {
 double min_corner_deg(const GeodesicTriangulation& g) { return corner_angle_stats(g).min_deg; }
 
 TEST(Refine, bisection_of_the_cube_halves_its_edges_down_to_the_bound) {
-    GeodesicTriangulation g = cube_g();
+    GeodesicTriangulation g = unit_cube_g();
     RefineOptions options;
     options.max_length = 0.6;
     const RefineResult r = refine(g, options);
@@ -91,7 +66,7 @@ TEST(Refine, bisection_of_the_cube_halves_its_edges_down_to_the_bound) {
 }
 
 TEST(Refine, face_count_target_is_reached_exactly_by_edge_bisection) {
-    GeodesicTriangulation g = cube_g();
+    GeodesicTriangulation g = unit_cube_g();
     RefineOptions options;
     options.target_faces = 100;
     const RefineResult r = refine(g, options);
@@ -103,7 +78,7 @@ TEST(Refine, face_count_target_is_reached_exactly_by_edge_bisection) {
 }
 
 TEST(Refine, bad_options_and_an_invalid_g_are_invalid_input) {
-    GeodesicTriangulation g = cube_g();
+    GeodesicTriangulation g = unit_cube_g();
     RefineOptions options;
     options.min_angle_deg = 40.0;
     EXPECT_THROW(refine(g, options), InvalidInput);
@@ -113,7 +88,7 @@ TEST(Refine, bad_options_and_an_invalid_g_are_invalid_input) {
     options.max_length = std::nan("");
     EXPECT_THROW(refine(g, options), InvalidInput);
     // Swap two polylines: G is no longer valid, and refinement refuses it.
-    GeodesicTriangulation broken = cube_g();
+    GeodesicTriangulation broken = unit_cube_g();
     const Polyline first = broken.polyline(EdgeHandle(0));
     broken.set_polyline(EdgeHandle(0), broken.polyline(EdgeHandle(1)));
     broken.set_polyline(EdgeHandle(1), first);

@@ -11,6 +11,7 @@
 #include <geotri/trace.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
+#include <geotri_test/g_checks.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
@@ -31,34 +32,9 @@ using geodesic::SurfacePoint;
 using OpenMesh::EdgeHandle;
 using OpenMesh::FaceHandle;
 using OpenMesh::VertexHandle;
-
-std::string describe(const ValidationReport& r) {
-    std::string s;
-    for (const Violation& v : r.violations) s += "  [" + std::to_string(v.condition) + "] " + v.what + "\n";
-    return s;
-}
-
-/// Valid with the overlay, and the patch areas sum to the area of T within 1e-9 relative.
-void expect_valid_with_area(const GeodesicTriangulation& g) {
-    const ValidationReport r = validate(g);
-    EXPECT_TRUE(r.valid) << describe(r);
-    EXPECT_TRUE(r.overlay_checked);
-    EXPECT_NEAR(r.patch_area, r.fine_area, 1e-9 * r.fine_area);
-}
-
-/// The unit cube (each side a 4 x 4 grid of squares) with G = the cube's eight corners and one diagonal per side.
-GeodesicTriangulation cube_g() {
-    auto fine = test::fine_of(test::cube(4));
-    MeshData data;
-    for (int k = 0; k < 8; ++k)
-        data.positions.push_back(fine->mesh.position(test::nearest_vertex(fine->mesh, Eigen::Vector3d(k & 1, k >> 1 & 1, k >> 2 & 1))));
-    // Oriented outwards: seen from outside, counter-clockwise.
-    data.triangles = {{0, 3, 1}, {0, 2, 3}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                      {2, 7, 3}, {2, 6, 7}, {0, 6, 2}, {0, 4, 6}, {1, 3, 7}, {1, 7, 5}};
-    GeodesicTriangulation g(fine, make_coarse_mesh(data, "cube"));
-    trace(g);
-    return g;
-}
+using test::describe;
+using test::expect_valid_with_area;
+using test::unit_cube_g;
 
 EdgeHandle edge_between(const CoarseMesh& coarse, int a, int b) {
     const auto h = coarse.find_halfedge(VertexHandle(a), VertexHandle(b));
@@ -70,7 +46,7 @@ Eigen::Vector3d position_of(const GeodesicTriangulation& g, VertexHandle v) {
 }
 
 TEST(Split, edge_split_of_a_cube_side_diagonal_meets_the_other_diagonal_at_the_centre) {
-    GeodesicTriangulation g = cube_g();
+    GeodesicTriangulation g = unit_cube_g();
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     // The diagonal of the bottom side z = 0 from corner 0 (0,0,0) to corner 3 (1,1,0).
     const EdgeHandle e = edge_between(g.coarse(), 0, 3);
@@ -87,7 +63,7 @@ TEST(Split, edge_split_of_a_cube_side_diagonal_meets_the_other_diagonal_at_the_c
 }
 
 TEST(Split, edge_split_at_a_fraction_lies_at_that_arc_length) {
-    GeodesicTriangulation g = cube_g();
+    GeodesicTriangulation g = unit_cube_g();
     const EdgeHandle e = edge_between(g.coarse(), 0, 3);
     const SplitResult r = split_edge(g, e, 0.3);
     ASSERT_TRUE(r.done) << r.reason;
@@ -99,7 +75,7 @@ TEST(Split, edge_split_at_a_fraction_lies_at_that_arc_length) {
 }
 
 TEST(Split, edge_split_fractions_outside_the_open_interval_are_invalid_input) {
-    GeodesicTriangulation g = cube_g();
+    GeodesicTriangulation g = unit_cube_g();
     const EdgeHandle e = edge_between(g.coarse(), 0, 3);
     EXPECT_THROW(split_edge(g, e, 0.0), InvalidInput);
     EXPECT_THROW(split_edge(g, e, 1.0), InvalidInput);
@@ -108,7 +84,7 @@ TEST(Split, edge_split_fractions_outside_the_open_interval_are_invalid_input) {
 }
 
 TEST(Split, face_split_inside_a_cube_side_joins_the_corners_with_straight_segments) {
-    GeodesicTriangulation g = cube_g();
+    GeodesicTriangulation g = unit_cube_g();
     // Face (0, 3, 1) of the bottom side: corners (0,0,0), (1,1,0), (1,0,0). A point inside it, on the fine mesh.
     FaceHandle f;
     for (auto face : g.coarse().faces()) {
@@ -143,7 +119,7 @@ TEST(Split, face_split_inside_a_cube_side_joins_the_corners_with_straight_segmen
 }
 
 TEST(Split, face_split_at_a_point_outside_the_patch_is_refused_and_g_is_unchanged) {
-    GeodesicTriangulation g = cube_g();
+    GeodesicTriangulation g = unit_cube_g();
     const GeodesicTriangulation before = g;
     // A point on the top side z = 1 cannot be inside a patch of the bottom side.
     const int v = test::nearest_vertex(g.fine().mesh, {0.5, 0.5, 1.0});
@@ -225,9 +201,7 @@ void check_every_split(const GeodesicTriangulation& g, const std::string& name, 
 
 TEST(Split, every_split_of_a_traced_bundled_mesh_leaves_g_valid) {
     auto fine = std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
-    DecimateOptions options;
-    options.target_faces = 100;
-    GeodesicTriangulation g(fine, make_coarse_mesh(decimate(*fine, options).coarse, "decimated"));
+    GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 100));
     trace(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     check_every_split(g, "bob_small");
@@ -239,9 +213,7 @@ TEST(Split, every_split_of_a_traced_vertebra_leaves_g_valid) {
                      << "': the real-mesh split test needs them";
     auto fine = std::make_shared<const FineMesh>(
         load_fine_mesh(test::shared_mesh("anatomy/lumbar_vertebra_mean_2nd.ply").path));
-    DecimateOptions options;
-    options.target_faces = 120;
-    GeodesicTriangulation g(fine, make_coarse_mesh(decimate(*fine, options).coarse, "decimated"));
+    GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 120));
     trace(g);
     flip_to_delaunay(g);  // the traced G is not valid at this size; flips make it so
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));

@@ -13,6 +13,8 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -114,7 +116,9 @@ class Trace : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("geotri_trace_" + std::string(info->name()));
+        // The process id keeps two runs of the suite (two build folders) out of each other's way.
+        dir_ = fs::temp_directory_path() /
+               ("geotri_trace_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }

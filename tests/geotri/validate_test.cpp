@@ -9,6 +9,7 @@
 #include <geotri/trace.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
+#include <geotri_test/g_checks.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
@@ -28,6 +29,7 @@ namespace {
 
 using geodesic::Mesh;
 using geodesic::SurfacePoint;
+using test::describe;
 using test::fine_of;
 using test::nearest_vertex;
 
@@ -116,12 +118,6 @@ bool has_violation(const ValidationReport& r, int condition, const std::vector<i
         if (all) return true;
     }
     return false;
-}
-
-std::string describe(const ValidationReport& r) {
-    std::string s;
-    for (const Violation& v : r.violations) s += "  [" + std::to_string(v.condition) + "] " + v.what + "\n";
-    return s;
 }
 
 int edge_between(const CoarseMesh& coarse, int a, int b) {

@@ -18,8 +18,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 tripod=$data/cad/tripod.off   # 24 vertices, 44 faces, genus 0: its coarsest G (a tetrahedron) is valid
 cross=$data/cad/cross.off     # 40 vertices, 76 faces, genus 0
 
-# make_gtri MESH OUT: the coarsest G of MESH, traced, in OUT (with the fine mesh copied next to it).
-make_gtri() {
+# make_coarsest_gtri MESH OUT: the coarsest G of MESH, traced, in OUT (with the fine mesh copied next to it).
+make_coarsest_gtri() {
     cp "$1" "in_$(basename "$1")" || fail "cannot copy $1"
     "$tools/geotri-decimate" "in_$(basename "$1")" -o in_coarse.off --coarsest --quiet || fail "geotri-decimate failed"
     "$tools/geotri-trace" "in_$(basename "$1")" in_coarse.off -o "$2" --quiet || fail "geotri-trace failed"
@@ -64,19 +64,19 @@ usage_missing_file)
     ;;
 
 usage_missing_fine_override)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     run in_g.gtri --fine no_such_mesh.off
     expect_usage_error
     ;;
 
 usage_unknown_option)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     run in_g.gtri --frobnicate
     expect_usage_error
     ;;
 
 valid_exits_zero)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     run in_g.gtri
     expect_rc 0
     head -n 1 stdout | grep -q "in_g.gtri: valid" || fail "report does not say valid"
@@ -88,7 +88,7 @@ valid_exits_zero)
     ;;
 
 valid_json_parses)
-    make_gtri "$cross" in_g.gtri
+    make_coarsest_gtri "$cross" in_g.gtri
     run in_g.gtri --json
     expect_rc 0
     [ "$(wc -l <stdout)" -eq 1 ] || fail "--json is not one line"
@@ -113,7 +113,7 @@ EOF
     ;;
 
 invalid_exits_three)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     turn_over in_g.gtri in_turned.gtri
     run in_turned.gtri
     expect_rc 3
@@ -124,7 +124,7 @@ invalid_exits_three)
     ;;
 
 invalid_json_counts)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     turn_over in_g.gtri in_turned.gtri
     run in_turned.gtri --json
     expect_rc 3
@@ -134,7 +134,7 @@ invalid_json_counts)
     ;;
 
 quiet_prints_nothing)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     turn_over in_g.gtri in_turned.gtri
     run in_turned.gtri --quiet
     expect_rc 3
@@ -146,7 +146,7 @@ quiet_prints_nothing)
     ;;
 
 fine_override_finds_a_moved_mesh)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     mkdir elsewhere && mv in_g.gtri elsewhere/
     run elsewhere/in_g.gtri
     expect_error_mentioning "elsewhere/in_g.gtri"
@@ -155,7 +155,7 @@ fine_override_finds_a_moved_mesh)
     ;;
 
 error_wrong_fine_mesh)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     cp "$cross" in_other.off
     run in_g.gtri --fine in_other.off
     expect_error_mentioning "in_"
@@ -168,7 +168,7 @@ error_empty_file)
     ;;
 
 error_truncated_file)
-    make_gtri "$tripod" in_g.gtri
+    make_coarsest_gtri "$tripod" in_g.gtri
     head -c 300 in_g.gtri >in_cut.gtri
     run in_cut.gtri
     expect_error_mentioning "in_cut.gtri"

@@ -69,3 +69,20 @@ expect_no_output() {
 json_value() {
     sed -n 's/.*"'"$1"'": *\([^,}]*\).*/\1/p' stdout | tr -d '"'
 }
+
+# For the scripts that set $tools (the folder of every geotri-* binary) and make their .gtri inputs with the real
+# tools:
+
+# check FILE: geotri-check's exit code for FILE (0 valid, 3 invalid).
+check() {
+    "$tools/geotri-check" "$1" --quiet
+}
+
+# make_gtri MESH DECIMATE_OPTIONS...: in_g.gtri, MESH decimated and traced (the fine mesh copied next to it).
+make_gtri() {
+    local mesh=$1
+    shift
+    cp "$mesh" "in_$(basename "$mesh")" || fail "cannot copy $mesh"
+    "$tools/geotri-decimate" "in_$(basename "$mesh")" -o in_coarse.off "$@" --quiet || fail "geotri-decimate failed"
+    "$tools/geotri-trace" "in_$(basename "$mesh")" in_coarse.off -o in_g.gtri --quiet || fail "geotri-trace failed"
+}

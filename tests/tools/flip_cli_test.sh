@@ -19,19 +19,6 @@ source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 tripod=$data/cad/tripod.off                  # genus 0: its coarsest G (a tetrahedron) is valid
 femur=$data/anatomy/femur_thing157696.stl    # at 320 faces, its traced G is invalid and flips make it valid
 
-check() {
-    "$tools/geotri-check" "$1" --quiet
-}
-
-# make_gtri MESH DECIMATE_OPTIONS...: in_g.gtri, MESH decimated and traced (the fine mesh copied next to it).
-make_gtri() {
-    local mesh=$1
-    shift
-    cp "$mesh" "in_$(basename "$mesh")" || fail "cannot copy $mesh"
-    "$tools/geotri-decimate" "in_$(basename "$mesh")" -o in_coarse.off "$@" --quiet || fail "geotri-decimate failed"
-    "$tools/geotri-trace" "in_$(basename "$mesh")" in_coarse.off -o in_g.gtri --quiet || fail "geotri-trace failed"
-}
-
 case "$case_name" in
 
 help_lists_every_option)

@@ -19,18 +19,11 @@ source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 tripod=$data/cad/tripod.off        # genus 0: its coarse G at 20 faces is valid
 bob=$data/classic/bob_small.ply    # genus 1: its G at 100 faces is valid
 
-check() {
-    "$tools/geotri-check" "$1" --quiet
-}
-
-# make_gtri MESH DECIMATE_OPTIONS...: in_g.gtri, MESH decimated, traced and flipped (the fine mesh copied next to it).
-make_gtri() {
-    local mesh=$1
-    shift
-    cp "$mesh" "in_$(basename "$mesh")" || fail "cannot copy $mesh"
-    "$tools/geotri-decimate" "in_$(basename "$mesh")" -o in_coarse.off "$@" --quiet || fail "geotri-decimate failed"
-    "$tools/geotri-trace" "in_$(basename "$mesh")" in_coarse.off -o in_traced.gtri --quiet || fail "geotri-trace failed"
-    "$tools/geotri-flip" in_traced.gtri -o in_g.gtri --quiet || fail "geotri-flip did not make G valid"
+# make_valid_gtri MESH DECIMATE_OPTIONS...: in_g.gtri, MESH decimated, traced and made valid by geotri-flip.
+make_valid_gtri() {
+    make_gtri "$@"
+    "$tools/geotri-flip" in_g.gtri -o in_flipped.gtri --quiet || fail "geotri-flip did not make G valid"
+    mv in_flipped.gtri in_g.gtri
 }
 
 case "$case_name" in
@@ -45,7 +38,7 @@ help_lists_every_option)
     ;;
 
 usage_no_target)
-    make_gtri "$tripod" --faces 20
+    make_valid_gtri "$tripod" --faces 20
     run in_g.gtri -o out.gtri
     expect_usage_error
     grep -q -- "--min-angle" stderr || fail "the message does not name the options"
@@ -53,21 +46,21 @@ usage_no_target)
     ;;
 
 usage_angle_out_of_range)
-    make_gtri "$tripod" --faces 20
+    make_valid_gtri "$tripod" --faces 20
     run in_g.gtri -o out.gtri --min-angle 50
     expect_usage_error
     expect_no_output
     ;;
 
 usage_bad_output_extension)
-    make_gtri "$tripod" --faces 20
+    make_valid_gtri "$tripod" --faces 20
     run in_g.gtri -o out.off --faces 40
     expect_usage_error
     expect_no_output
     ;;
 
 face_target_is_reached)
-    make_gtri "$bob" --faces 100
+    make_valid_gtri "$bob" --faces 100
     run in_g.gtri -o out.gtri --faces 300 --json
     expect_rc 0
     check out.gtri || fail "geotri-check finds out.gtri invalid"
@@ -76,7 +69,7 @@ face_target_is_reached)
     ;;
 
 max_length_is_reached)
-    make_gtri "$bob" --faces 100
+    make_valid_gtri "$bob" --faces 100
     run in_g.gtri -o out.gtri --max-length 0.5 --json
     expect_rc 0
     check out.gtri || fail "geotri-check finds out.gtri invalid"
@@ -85,7 +78,7 @@ max_length_is_reached)
     ;;
 
 min_angle_is_reached)
-    make_gtri "$bob" --faces 100
+    make_valid_gtri "$bob" --faces 100
     run in_g.gtri -o out.gtri --min-angle 30 --json
     expect_rc 0
     check out.gtri || fail "geotri-check finds out.gtri invalid"
@@ -95,7 +88,7 @@ min_angle_is_reached)
     ;;
 
 same_output_twice)
-    make_gtri "$bob" --faces 100
+    make_valid_gtri "$bob" --faces 100
     run in_g.gtri -o one.gtri --min-angle 25 --quiet
     expect_rc 0
     run in_g.gtri -o two.gtri --min-angle 25 --quiet --threads 1
@@ -104,7 +97,7 @@ same_output_twice)
     ;;
 
 error_invalid_input_g)
-    make_gtri "$bob" --faces 100
+    make_valid_gtri "$bob" --faces 100
     # Turn every coarse face over: G is no longer valid, and refinement refuses it.
     awk '/^faces /{inside=1; print; next} /^edges /{inside=0} inside && NF==3 {print $3, $2, $1; next} {print}' \
         in_g.gtri >in_turned.gtri
@@ -114,7 +107,7 @@ error_invalid_input_g)
     ;;
 
 error_truncated_gtri)
-    make_gtri "$tripod" --faces 20
+    make_valid_gtri "$tripod" --faces 20
     head -c 200 in_g.gtri >in_cut.gtri
     run in_cut.gtri -o out.gtri --faces 40
     expect_error_mentioning "in_cut.gtri"
@@ -122,7 +115,7 @@ error_truncated_gtri)
     ;;
 
 failure_keeps_the_old_output)
-    make_gtri "$tripod" --faces 20
+    make_valid_gtri "$tripod" --faces 20
     echo "old" >in_out.gtri
     : >in_empty.gtri
     run in_empty.gtri -o in_out.gtri --faces 40

@@ -71,4 +71,12 @@ std::string JsonSummary::str() const {
     return out + "}";
 }
 
+void add_corner_angles(JsonSummary& summary, const CornerAngleStats& before, const CornerAngleStats& after) {
+    for (const auto& [stats, suffix] : {std::pair{&before, "_before"}, std::pair{&after, ""}}) {
+        summary.add(std::string("min_corner_angle_deg") + suffix, stats->min_deg);
+        summary.add(std::string("mean_corner_angle_deg") + suffix, stats->mean_deg);
+        summary.add(std::string("max_corner_angle_deg") + suffix, stats->max_deg);
+    }
+}
+
 }  // namespace geotri::tools

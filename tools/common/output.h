@@ -1,6 +1,8 @@
 #pragma once
 // Output for the tools: files that appear only when complete, and the --json summary.
 
+#include <geotri/flip_to_delaunay.h>
+
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -35,6 +37,10 @@ private:
     void add_raw(const std::string& key, std::string json);
     std::vector<std::pair<std::string, std::string>> fields_;
 };
+
+/// The minimum, mean and maximum corner angles before and after an operation, as min_corner_angle_deg_before, ...,
+/// min_corner_angle_deg, ...: the keys that geotri-flip and geotri-refine share.
+void add_corner_angles(JsonSummary& summary, const CornerAngleStats& before, const CornerAngleStats& after);
 
 /// "%.17g", which reads back as the same double; "inf" and "-inf" for infinities.
 std::string format_double(double value);

@@ -1,0 +1,56 @@
+#pragma once
+// Checks and hand-made triangulations shared by the libgeotri tests of operations on G. Header-only, like
+// fine_mesh.h: geotri_test_support links only libgeodesic, so a test that includes this header links libgeotri.
+
+#include <geotri/decimate.h>
+#include <geotri/fine_mesh.h>
+#include <geotri/trace.h>
+#include <geotri/validate.h>
+#include <geotri_test/fine_mesh.h>
+#include <geotri_test/procedural_meshes.h>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace geotri::test {
+
+/// One line per violation, for failure messages.
+inline std::string describe(const ValidationReport& r) {
+    std::string s;
+    for (const Violation& v : r.violations) s += "  [" + std::to_string(v.condition) + "] " + v.what + "\n";
+    return s;
+}
+
+/// Valid with the overlay, and the patch areas sum to the area of T within 1e-9 relative.
+inline void expect_valid_with_area(const GeodesicTriangulation& g) {
+    const ValidationReport r = validate(g);
+    EXPECT_TRUE(r.valid) << describe(r);
+    EXPECT_TRUE(r.overlay_checked);
+    EXPECT_NEAR(r.patch_area, r.fine_area, 1e-9 * r.fine_area);
+}
+
+/// The unit cube (each side a 4 x 4 grid of squares) with G made of the cube's eight corners (corner k at
+/// (k & 1, k >> 1 & 1, k >> 2 & 1)) and one diagonal per side, traced. It is valid.
+inline GeodesicTriangulation unit_cube_g() {
+    auto fine = fine_of(cube(4));
+    MeshData data;
+    for (int k = 0; k < 8; ++k)
+        data.positions.push_back(
+            fine->mesh.position(nearest_vertex(fine->mesh, Eigen::Vector3d(k & 1, k >> 1 & 1, k >> 2 & 1))));
+    // Oriented outwards: counter-clockwise seen from outside.
+    data.triangles = {{0, 3, 1}, {0, 2, 3}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                      {2, 7, 3}, {2, 6, 7}, {0, 6, 2}, {0, 4, 6}, {1, 3, 7}, {1, 7, 5}};
+    GeodesicTriangulation g(fine, make_coarse_mesh(data, "cube"));
+    trace(g);
+    return g;
+}
+
+/// The coarse mesh of decimate() to at most `target_faces` faces.
+inline CoarseMesh decimated_coarse(const FineMesh& fine, std::size_t target_faces) {
+    DecimateOptions options;
+    options.target_faces = target_faces;
+    return make_coarse_mesh(decimate(fine, options).coarse, "decimated");
+}
+
+}  // namespace geotri::test
