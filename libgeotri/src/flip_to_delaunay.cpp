@@ -127,7 +127,10 @@ public:
                 ++result_.improve_refused[static_cast<std::size_t>(found[k].refused)];
             if (!found[k].flip) continue;
             const std::array<int, 5> quad = quad_edges(EdgeHandle(edges[k]));
-            if (std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[static_cast<std::size_t>(x)] != 0; })) {
+            // An earlier flip of this sweep changed e's faces, or made the edge c-d that this flip would make (two
+            // quads can share their opposite vertices): evaluate e again in the next sweep.
+            if (std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[static_cast<std::size_t>(x)] != 0; }) ||
+                !coarse.is_flip_ok(EdgeHandle(edges[k]))) {
                 dirty_[static_cast<std::size_t>(edges[k])] = 1;
                 continue;
             }

@@ -64,8 +64,8 @@ public:
         double sum = 0.0;
         for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
         min_edge_ = options.min_edge_length > 0.0 ? options.min_edge_length : 0.1 * sum / mesh.num_halfedges();
-        budget_ = options.max_new_vertices > 0 ? options.max_new_vertices
-                                                : 20 * static_cast<int>(g.coarse().n_faces()) + 1000;
+        // Bisection stops by itself (every split halves an edge); only an explicit cap bounds it.
+        budget_ = options.max_new_vertices > 0 ? options.max_new_vertices : std::numeric_limits<int>::max();
         min_angle_ = options.min_angle_deg * k_pi / 180.0;
         curved_ = k_curved_fraction * min_angle_;
         // The flips after a split evaluate a handful of edges: one thread does them faster than a team, and the
@@ -94,6 +94,9 @@ public:
 
     void raise_min_angle() {
         if (!(min_angle_ > 0.0)) return;
+        new_vertices_ = 0;
+        budget_ = options_.max_new_vertices > 0 ? options_.max_new_vertices
+                                                : 4 * static_cast<int>(g_.coarse().n_faces()) + 100;
         std::set<std::array<int, 3>> given_up;
         std::vector<std::array<int, 3>> cached_vertices;
         std::vector<double> cached_min;  // per face: its smallest corner that is not exempt (or infinity)

@@ -24,7 +24,10 @@ struct RefineOptions {
     /// that refinement does not chase a needle of T with ever smaller triangles.
     double min_edge_length = 0.0;
     bool flip = true;            ///< flip towards geodesic Delaunay (angle criterion) around every new vertex
-    int max_new_vertices = 0;    ///< a guard (0: 20 times the faces of G, plus 1000)
+    /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
+    /// the faces of G, plus 100): where angle refinement cascades instead of converging (it does on some curved
+    /// meshes at 25-30 degrees), it stops there and says so.
+    int max_new_vertices = 0;
     /// Called now and then with a line saying where refinement is.
     std::function<void(const std::string&)> progress;
 };
