@@ -1,9 +1,10 @@
 #!/usr/bin/python3
-"""Runs decimate -> trace -> check -> overlay on every mesh of a folder (default ../shared/data) with the geotri
-tools, and prints a Markdown table: faces, coarse faces, validity (and the conditions that failed) and the wall
-time of each tool, loading and writing included.
+"""Runs decimate -> trace -> flip -> refine -> check -> overlay on every mesh of a folder (default ../shared/data)
+with the geotri tools, and prints a Markdown table: faces, coarse faces, validity after trace, after flip (with the
+minimum corner angle) and at the end (with the conditions that failed), and the wall time of each tool, loading and
+writing included. G is refined only when flip made it valid.
 
-    bench/pipeline_sweep.py [--faces N] [--threads N] [--build DIR] [--data DIR] [MESH ...]
+    bench/pipeline_sweep.py [--faces N] [--min-angle A] [--threads N] [--build DIR] [--data DIR] [MESH ...]
 
 Meshes whose topology needs more than N faces are decimated to the coarsest that it allows instead. The outputs
 go to a temporary folder that is removed at the end.
@@ -32,31 +33,73 @@ def run(tool, args, build):
     return done.returncode, summary, seconds, done.stderr.strip()
 
 
+def verdict_of(check):
+    """'valid', or 'invalid (conditions)' from geotri-check's summary."""
+    if check["valid"]:
+        return "valid"
+    return "invalid (" + ", ".join(str(c) for c in range(1, 5) if check[f"condition_{c}"] > 0) + ")"
+
+
 def sweep_one(mesh, options, work):
+    """One table row: decimate -> trace -> flip -> refine -> check -> overlay on `mesh`."""
     name = str(mesh.relative_to(options.data)) if mesh.is_relative_to(options.data) else mesh.name
     stem = work / mesh.stem
     threads = ["--threads", str(options.threads)] if options.threads else []
-    code, dec, t_dec, err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--faces", str(options.faces)], options.build)
+    times = {}
+    row = [name]
+
+    def stop(why):
+        cells = row + [why] + ["-"] * (6 - len(row))
+        cells += [f"{times[t]:.2f}" if t in times else "-" for t in STAGES]
+        cells.append(f"{sum(times.values()):.2f}")
+        return "| " + " | ".join(cells) + " |"
+
+    code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--faces", str(options.faces)],
+                                            options.build)
     if code != 0:
-        return f"| {name} | - | - | refused: {err.splitlines()[-1] if err else code} | - | - | - | - | - |"
+        return stop(f"refused: {err.splitlines()[-1] if err else code}")
     if not dec["target_reached"]:  # the topology needs more faces: take the coarsest
-        code, dec, t_dec, err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--coarsest"], options.build)
-    code, tr, t_tr, err = run("trace", [str(mesh), f"{stem}.off", "-o", f"{stem}.gtri", *threads], options.build)
+        code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--coarsest"],
+                                                options.build)
+    row += [str(dec["faces"]), str(dec["coarse_faces"])]
+    code, _, times["trace"], err = run("trace", [str(mesh), f"{stem}.off", "-o", f"{stem}.gtri", *threads],
+                                       options.build)
     if code != 0:
-        return f"| {name} | {dec['faces']} | {dec['coarse_faces']} | trace failed: {err} | {t_dec:.2f} | - | - | - | - |"
-    code, chk, t_chk, err = run("check", [f"{stem}.gtri"], options.build)
+        return stop(f"trace failed: {err}")
+    code, chk, _, err = run("check", [f"{stem}.gtri"], options.build)
     if chk is None:
-        return f"| {name} | {dec['faces']} | {dec['coarse_faces']} | check failed: {err} | {t_dec:.2f} | {t_tr:.2f} | - | - | - |"
-    failed = [str(c) for c in range(1, 5) if chk[f"condition_{c}"] > 0]
-    verdict = "valid" if chk["valid"] else "invalid (" + ", ".join(failed) + ")"
-    code, ov, t_ov, err = run("overlay", [f"{stem}.gtri", "-o", f"{stem}.vtu"], options.build)
+        return stop(f"check failed: {err}")
+    row.append(verdict_of(chk))
+    code, flp, times["flip"], err = run("flip", [f"{stem}.gtri", "-o", f"{stem}.flip.gtri", *threads], options.build)
+    if flp is None:
+        return stop(f"flip failed: {err}")
+    row.append(("valid" if flp["valid"] else "INVALID") +
+               f", {flp['min_corner_angle_deg_before']:.1f}° → {flp['min_corner_angle_deg']:.1f}°")
+    final = f"{stem}.flip.gtri"
+    if flp["valid"] and options.min_angle > 0:
+        code, ref, times["refine"], err = run("refine", [final, "-o", f"{stem}.refine.gtri", "--min-angle",
+                                                         str(options.min_angle)], options.build)
+        if ref is None:
+            return stop(f"refine failed: {err}")
+        row.append(f"{ref['faces']} faces, {ref['min_corner_angle_deg']:.1f}°" +
+                   (f", {ref['small_corners_left']} left" if ref["small_corners_left"] else "") +
+                   ("" if ref["valid"] else ", INVALID"))
+        final = f"{stem}.refine.gtri"
+    else:
+        row.append("-")
+    code, chk, times["check"], err = run("check", [final], options.build)
+    if chk is None:
+        return stop(f"check failed: {err}")
+    code, ov, times["overlay"], err = run("overlay", [final, "-o", f"{stem}.vtu"], options.build)
     if ov is None:
-        return f"| {name} | {dec['faces']} | {dec['coarse_faces']} | {verdict}; overlay failed: {err} | {t_dec:.2f} | {t_tr:.2f} | {t_chk:.2f} | - | - |"
+        return stop(f"overlay failed: {err}")
+    result = verdict_of(chk)
     if chk["valid"] and ov["relative_area_error"] > 1e-9:
-        verdict += f", AREA MISMATCH {ov['relative_area_error']:.1e}"
-    total = t_dec + t_tr + t_chk + t_ov
-    return (f"| {name} | {dec['faces']} | {dec['coarse_faces']} | {verdict} | {t_dec:.2f} | {t_tr:.2f} | "
-            f"{t_chk:.2f} | {t_ov:.2f} | {total:.2f} |")
+        result += f", AREA MISMATCH {ov['relative_area_error']:.1e}"
+    return stop(result)
+
+
+STAGES = ["decimate", "trace", "flip", "refine", "check", "overlay"]
 
 
 def main():
@@ -64,6 +107,7 @@ def main():
     parser.add_argument("meshes", nargs="*", type=pathlib.Path)
     parser.add_argument("--faces", type=int, default=320)
     parser.add_argument("--threads", type=int, default=0)
+    parser.add_argument("--min-angle", type=float, default=25.0, help="refine to this angle (0: no refinement)")
     parser.add_argument("--build", type=pathlib.Path, default=ROOT / "build")
     parser.add_argument("--data", type=pathlib.Path, default=ROOT.parent / "shared" / "data")
     options = parser.parse_args()
@@ -72,8 +116,9 @@ def main():
                                       if p.suffix in (".off", ".obj", ".ply", ".stl") and p.is_file())
     if not meshes:
         sys.exit(f"pipeline_sweep.py: no meshes under {options.data}")
-    print("| mesh | faces | coarse faces | result | decimate (s) | trace (s) | check (s) | overlay (s) | total (s) |")
-    print("|---|---:|---:|---|---:|---:|---:|---:|---:|")
+    print("| mesh | faces | coarse faces | traced | flipped, min angle | refined | final | " +
+          " | ".join(f"{stage} (s)" for stage in STAGES) + " | total (s) |")
+    print("|---|---:|---:|---|---|---|---|" + "---:|" * (len(STAGES) + 1))
     with tempfile.TemporaryDirectory(prefix="geotri-sweep-") as work:
         for mesh in meshes:
             print(sweep_one(mesh.resolve(), options, pathlib.Path(work)), flush=True)
