@@ -32,17 +32,7 @@ struct Piece {
 /// The fine faces that hold the straight segment from p to q: one, or the two faces of the fine edge they lie on.
 std::vector<int> faces_of_segment(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q) {
     if (on_common_edge(mesh, p, q)) {
-        int a, b;
-        if (p.kind == PointKind::edge) {
-            a = p.edge_v0;
-            b = p.edge_v1;
-        } else if (q.kind == PointKind::edge) {
-            a = q.edge_v0;
-            b = q.edge_v1;
-        } else {
-            a = p.vertex;
-            b = q.vertex;
-        }
+        const auto [a, b] = common_edge(p, q);
         std::vector<int> faces;
         for (int h : {mesh.find_halfedge(a, b), mesh.find_halfedge(b, a)})
             if (h >= 0) faces.push_back(Mesh::face_of(h));

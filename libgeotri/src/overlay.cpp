@@ -110,11 +110,7 @@ public:
         if (p.kind == PointKind::vertex) return p.vertex;
         PointKey key;
         int slot = -1;
-        if (p.kind == PointKind::edge) {
-            if (p.edge_v0 > p.edge_v1) {
-                std::swap(p.edge_v0, p.edge_v1);
-                p.t = 1.0 - p.t;
-            }
+        if (p.kind == PointKind::edge) {  // canonical: edge_v0 < edge_v1
             int h = mesh_.find_halfedge(p.edge_v0, p.edge_v1);
             if (h < 0) h = mesh_.find_halfedge(p.edge_v1, p.edge_v0);
             if (h < 0) return -1;

@@ -20,22 +20,6 @@ namespace {
 // overlay's cut points are rounded, so a point on a polyline may fall a hair outside the triangles on either side.
 constexpr double k_inside_tolerance = 1e-9;
 
-/// The fine faces that hold p: the faces around a vertex, the two faces of an edge, or the one face.
-std::vector<int> faces_holding(const Mesh& mesh, const SurfacePoint& p) {
-    std::vector<int> faces;
-    switch (p.kind) {
-    case PointKind::vertex:
-        for (int h : mesh.outgoing_halfedges(p.vertex)) faces.push_back(Mesh::face_of(h));
-        break;
-    case PointKind::edge:
-        for (int h : {mesh.find_halfedge(p.edge_v0, p.edge_v1), mesh.find_halfedge(p.edge_v1, p.edge_v0)})
-            if (h >= 0) faces.push_back(Mesh::face_of(h));
-        break;
-    case PointKind::face: faces.push_back(p.face); break;
-    }
-    return faces;
-}
-
 }  // namespace
 
 bool same_point(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q) {

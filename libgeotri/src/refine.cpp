@@ -315,16 +315,7 @@ private:
             }
             if (nearest <= radius + longest) stack.push_back(f);
         };
-        switch (p.kind) {
-        case geodesic::PointKind::vertex:
-            for (int h : mesh.outgoing_halfedges(p.vertex)) visit(geodesic::Mesh::face_of(h));
-            break;
-        case geodesic::PointKind::edge:
-            for (int h : {mesh.find_halfedge(p.edge_v0, p.edge_v1), mesh.find_halfedge(p.edge_v1, p.edge_v0)})
-                if (h >= 0) visit(geodesic::Mesh::face_of(h));
-            break;
-        case geodesic::PointKind::face: visit(p.face); break;
-        }
+        for (int f : faces_holding(mesh, p)) visit(f);
         std::optional<int> best;
         double best_distance = radius;
         while (!stack.empty() && seen_faces.size() < k_max_search_faces) {

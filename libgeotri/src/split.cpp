@@ -130,19 +130,29 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
     return {};
 }
 
-/// Adds a coarse vertex at `location` (its position on T), not yet connected.
-VertexHandle add_vertex_at(GeodesicTriangulation& g, const SurfacePoint& location) {
-    const Eigen::Vector3d x = g.fine().mesh.point(location);
-    return g.coarse().add_vertex(CoarseMesh::Point(x.x(), x.y(), x.z()));
-}
-
-/// Sets the polylines of the new vertex's edges; throws when OpenMesh did not join it to a vertex it should.
-void set_spoke_paths(GeodesicTriangulation& g, VertexHandle v, const std::vector<std::pair<VertexHandle, Polyline>>& paths) {
+/// Does a split that find_spokes() accepted: a new coarse vertex at `at`, joined to the mesh by
+/// `split_mesh(vertex)` (OpenMesh's edge or face split), with the polylines of its edges: `paths` (the parts of a
+/// split polyline) and the spokes'. Throws when OpenMesh did not join it to a vertex it should.
+template <class SplitMesh>
+SplitResult connect_new_vertex(GeodesicTriangulation& g, const SurfacePoint& at, SplitMesh split_mesh,
+                               std::vector<std::pair<VertexHandle, Polyline>> paths, const std::vector<Spoke>& spokes) {
+    const Eigen::Vector3d x = g.fine().mesh.point(at);
+    const VertexHandle v = g.coarse().add_vertex(CoarseMesh::Point(x.x(), x.y(), x.z()));
+    split_mesh(v);
+    g.set_location(v, at);
+    SplitResult result;
+    for (const Spoke& s : spokes) {
+        paths.emplace_back(s.to, s.path);
+        result.region_paths += s.in_region;
+    }
     for (const auto& [to, path] : paths) {
         const HalfedgeHandle h = g.coarse().find_halfedge(v, to);
         if (!h.is_valid()) throw InvalidInput("split: OpenMesh's split went wrong");
         g.set_path(h, path);
     }
+    result.done = true;
+    result.vertex = v;
+    return result;
 }
 
 }  // namespace
@@ -216,14 +226,7 @@ SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, 
         result.reason = name + ": " + why;
         return result;
     }
-    const VertexHandle v = add_vertex_at(g, m);
-    coarse.split(e, v);
-    g.set_location(v, m);
-    set_spoke_paths(g, v, {{a, to_a}, {b, to_b}, {c, spokes[0].path}, {d, spokes[1].path}});
-    result.done = true;
-    result.vertex = v;
-    result.region_paths = spokes[0].in_region + spokes[1].in_region;
-    return result;
+    return connect_new_vertex(g, m, [&](VertexHandle v) { coarse.split(e, v); }, {{a, to_a}, {b, to_b}}, spokes);
 }
 
 SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoint& p, const SplitOptions& options) {
@@ -278,14 +281,7 @@ SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoin
         result.reason = name + ": " + why;
         return result;
     }
-    const VertexHandle v = add_vertex_at(g, point);
-    coarse.split(f, v);
-    g.set_location(v, point);
-    set_spoke_paths(g, v, {{spokes[0].to, spokes[0].path}, {spokes[1].to, spokes[1].path}, {spokes[2].to, spokes[2].path}});
-    result.done = true;
-    result.vertex = v;
-    for (const Spoke& s : spokes) result.region_paths += s.in_region;
-    return result;
+    return connect_new_vertex(g, point, [&](VertexHandle v) { coarse.split(f, v); }, {}, spokes);
 }
 
 }  // namespace geotri

@@ -2,6 +2,8 @@
 #include <geotri/straight_geodesic.h>
 #include <geotri/tangent_angles.h>
 
+#include "plane_segments.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -23,7 +25,7 @@ constexpr double k_two_pi = 2.0 * k_pi;
 /// far below it, so the same input is decided the same way whatever the order of the operations.
 constexpr double k_snap = 1e-11;
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+using detail::cross;
 
 /// Face face_of(h) laid out in the plane frame of its halfedge h: corner j is tail(edge j), and edge j runs from
 /// corner j to corner j+1 (edge 0 is h, edge 1 next(h), edge 2 prev(h)).

@@ -137,6 +137,36 @@ int common_face(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q) 
     return -1;
 }
 
+std::pair<int, int> common_edge(const SurfacePoint& p, const SurfacePoint& q) {
+    int a, b;
+    if (p.kind == PointKind::edge) {
+        a = p.edge_v0;
+        b = p.edge_v1;
+    } else if (q.kind == PointKind::edge) {
+        a = q.edge_v0;
+        b = q.edge_v1;
+    } else {
+        a = p.vertex;
+        b = q.vertex;
+    }
+    return {std::min(a, b), std::max(a, b)};
+}
+
+std::vector<int> faces_holding(const Mesh& mesh, const SurfacePoint& p) {
+    std::vector<int> faces;
+    switch (p.kind) {
+    case PointKind::vertex:
+        for (int h : mesh.outgoing_halfedges(p.vertex)) faces.push_back(Mesh::face_of(h));
+        break;
+    case PointKind::edge:
+        for (int h : {mesh.find_halfedge(p.edge_v0, p.edge_v1), mesh.find_halfedge(p.edge_v1, p.edge_v0)})
+            if (h >= 0) faces.push_back(Mesh::face_of(h));
+        break;
+    case PointKind::face: faces.push_back(p.face); break;
+    }
+    return faces;
+}
+
 std::array<double, 3> barycentric_in(const Mesh& mesh, int f, const SurfacePoint& p) {
     const std::array<int, 3>& t = mesh.triangle(f);
     std::array<double, 3> b{0.0, 0.0, 0.0};

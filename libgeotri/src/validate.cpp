@@ -46,17 +46,6 @@ std::string number(double x) {
     return buffer;
 }
 
-/// The one representation of a point (Mesh::canonical), with an edge point's vertices in increasing order, so that
-/// equal points compare equal.
-SurfacePoint normalised(const Mesh& mesh, const SurfacePoint& p) {
-    SurfacePoint c = mesh.canonical(p);
-    if (c.kind == PointKind::edge && c.edge_v0 > c.edge_v1) {
-        std::swap(c.edge_v0, c.edge_v1);
-        c.t = 1.0 - c.t;
-    }
-    return c;
-}
-
 /// The key of the fine edge {a, b}: the smaller of its halfedges.
 int edge_key(const Mesh& mesh, int a, int b) {
     const int h = mesh.find_halfedge(a, b), g = mesh.find_halfedge(b, a);
@@ -137,9 +126,9 @@ private:
     const CoarseMesh& coarse_;
     ValidationReport& report_;
 
-    std::vector<Polyline> paths_;                ///< per coarse edge index, normalised (empty for a deleted edge)
+    std::vector<Polyline> paths_;                ///< per coarse edge index, in canonical form (empty for a deleted edge)
     std::vector<std::array<int, 2>> ends_;       ///< per coarse edge: from and to vertex of halfedge 0
-    std::vector<SurfacePoint> locations_;        ///< per coarse vertex, normalised
+    std::vector<SurfacePoint> locations_;        ///< per coarse vertex, in canonical form
     std::vector<unsigned char> path_ok_;         ///< per coarse edge: ends match and every segment shares a face
     std::vector<double> corner_angles_;          ///< every coarse corner angle that could be measured
 
@@ -165,7 +154,7 @@ void Validator::prepare() {
     locations_.assign(coarse_.n_vertices(), SurfacePoint::at_vertex(-1));
     for (auto v : coarse_.vertices()) {
         try {
-            locations_[v.idx()] = normalised(mesh_, g_.location(v));
+            locations_[v.idx()] = mesh_.canonical(g_.location(v));
         } catch (const InvalidInput& e) {
             throw InvalidInput("coarse vertex " + std::to_string(v.idx()) + ": location: " + e.what());
         }
@@ -181,7 +170,7 @@ void Validator::prepare() {
         path.reserve(raw.size());
         for (std::size_t i = 0; i < raw.size(); ++i) {
             try {
-                path.push_back(normalised(mesh_, raw[i]));
+                path.push_back(mesh_.canonical(raw[i]));
             } catch (const InvalidInput& ex) {
                 throw InvalidInput("coarse edge " + std::to_string(e.idx()) + ": point " + std::to_string(i) +
                                    ": " + ex.what());
@@ -378,17 +367,7 @@ void Validator::check_crossings() {
             const SurfacePoint& p = path[i];
             const SurfacePoint& q = path[i + 1];
             if (on_common_edge(mesh_, p, q)) {
-                int a, b;
-                if (p.kind == PointKind::edge) {
-                    a = p.edge_v0;
-                    b = p.edge_v1;
-                } else if (q.kind == PointKind::edge) {
-                    a = q.edge_v0;
-                    b = q.edge_v1;
-                } else {
-                    a = std::min(p.vertex, q.vertex);
-                    b = std::max(p.vertex, q.vertex);
-                }
+                const auto [a, b] = common_edge(p, q);
                 auto param = [a](const SurfacePoint& s) {
                     return s.kind == PointKind::vertex ? (s.vertex == a ? 0.0 : 1.0) : s.t;
                 };

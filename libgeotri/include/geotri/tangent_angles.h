@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace geotri {
@@ -32,6 +33,13 @@ int common_face(const geodesic::Mesh& mesh, const geodesic::SurfacePoint& p, con
 /// True when p and q both lie on one fine edge (its vertices included), so that the segment between them runs along
 /// that edge.
 bool on_common_edge(const geodesic::Mesh& mesh, const geodesic::SurfacePoint& p, const geodesic::SurfacePoint& q);
+
+/// The fine edge that p and q both lie on, as its two vertices in increasing order. Precondition:
+/// on_common_edge(mesh, p, q).
+std::pair<int, int> common_edge(const geodesic::SurfacePoint& p, const geodesic::SurfacePoint& q);
+
+/// The fine faces that hold p: those around a vertex, the one or two of an edge, or the one it is inside.
+std::vector<int> faces_holding(const geodesic::Mesh& mesh, const geodesic::SurfacePoint& p);
 
 /// The position of p, a point of face f (one of its vertices, a point of one of its edges, or a point inside it),
 /// in the plane frame of the fine halfedge h of f: tail(h) at (0, 0), head(h) at (length(h), 0), the face at y >= 0.
