@@ -2,6 +2,7 @@
 #include <geodesic/exact_geodesic.h>
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/overlay.h>
+#include <geotri/split.h>
 
 #include <algorithm>
 #include <chrono>
@@ -240,46 +241,103 @@ private:
 /// Violations of conditions 1-3 (the cheap ones, without the overlay).
 int cheap_count(const ValidationReport& r) { return r.violation_count[0] + r.violation_count[1] + r.violation_count[2]; }
 
-/// Untangles by single flips while they strictly lower the number of violations (and do not raise that of
-/// conditions 1-3), which bounds the number of flips. `report` is validate(g) on entry and on exit.
-void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
-              ValidationReport& report) {
+/// The coarse vertices that a fork split might mend: those that the violations name, and the ends of the edges
+/// that they name. Sorted, so that untangling is deterministic.
+std::vector<int> candidate_vertices(const CoarseMesh& coarse, const ValidationReport& report) {
+    std::set<int> vertices;
+    for (const Violation& v : report.violations) {
+        vertices.insert(v.coarse_vertices.begin(), v.coarse_vertices.end());
+        for (int e : v.coarse_edges)
+            for (int side = 0; side < 2; ++side)
+                vertices.insert(coarse.to_vertex_handle(coarse.halfedge_handle(EdgeHandle(e), side)).idx());
+    }
+    return {vertices.begin(), vertices.end()};
+}
+
+/// Untangling's judge: `trial` is kept when it strictly lowers the number of violations without raising that of
+/// conditions 1-3 (checked first, without the overlay, which costs more). On success `report` becomes trial's.
+bool lowers_violations(const GeodesicTriangulation& trial, ValidationReport& report) {
     ValidationOptions cheap;
     cheap.overlay = false;
+    if (cheap_count(validate(trial, cheap)) > cheap_count(report)) return false;
+    ValidationReport after = validate(trial);
+    if (total(after) >= total(report)) return false;
+    report = std::move(after);
+    return true;
+}
+
+/// Untangles by single flips, and where no flip helps by fork splits, while they strictly lower the number of
+/// violations (and do not raise that of conditions 1-3), which bounds their number. `report` is validate(g) on
+/// entry and on exit.
+void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
+              ValidationReport& report) {
     geodesic::ExactGeodesic propagation(g.fine().mesh);
     FlipOptions flip_options;
     flip_options.check_validity = false;
     flip_options.propagation = &propagation;
-    int round = 0;
-    while (!report.valid && result.untangle_flips < options.max_untangle_flips) {
-        ++round;
-        bool improved = false;
+    SplitOptions split_options;
+    split_options.propagation = &propagation;
+    auto try_flips = [&] {
         for (int index : candidate_edges(g.coarse(), report)) {
             const EdgeHandle e(index);
             if (g.coarse().is_boundary(e) || !g.coarse().is_flip_ok(e)) continue;
             GeodesicTriangulation trial = g;
-            const FlipPlan plan = flip(trial, e, flip_options);
-            if (!plan.accepted()) {
+            if (!flip(trial, e, flip_options).accepted()) {
                 ++result.untangle_refused;
                 continue;
             }
-            // The overlay (condition 4) costs more than conditions 1-3: build it only when they do not decide.
-            const int cheap_after = cheap_count(validate(trial, cheap));
-            if (cheap_after > cheap_count(report)) {
-                ++result.untangle_rejected;
-                continue;
-            }
-            ValidationReport after = validate(trial);
-            if (total(after) < total(report)) {
+            if (lowers_violations(trial, report)) {
                 g = std::move(trial);
-                report = std::move(after);
                 ++result.untangle_flips;
-                improved = true;
-                break;
+                return true;
             }
             ++result.untangle_rejected;
         }
-        if (!improved) {
+        return false;
+    };
+    auto try_fork_splits = [&] {
+        for (int index : candidate_vertices(g.coarse(), report)) {
+            for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(index))) {
+                GeodesicTriangulation trial = g;
+                if (!split_fork(trial, fork, split_options).done) {
+                    ++result.untangle_refused;
+                    continue;
+                }
+                if (lowers_violations(trial, report)) {
+                    g = std::move(trial);
+                    ++result.untangle_fork_splits;
+                    return true;
+                }
+                ++result.untangle_rejected;
+            }
+        }
+        return false;
+    };
+    // Where neither helps: split an edge that a violation names at its middle, which gives small components and
+    // thin parts the vertices that their geodesics need.
+    auto try_edge_splits = [&] {
+        SplitOptions unchecked = split_options;
+        unchecked.check_validity = false;
+        for (int index : candidate_edges(g.coarse(), report)) {
+            GeodesicTriangulation trial = g;
+            if (!split_edge(trial, EdgeHandle(index), 0.5, unchecked).done) {
+                ++result.untangle_refused;
+                continue;
+            }
+            if (lowers_violations(trial, report)) {
+                g = std::move(trial);
+                ++result.untangle_edge_splits;
+                return true;
+            }
+            ++result.untangle_rejected;
+        }
+        return false;
+    };
+    int round = 0;
+    while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_edge_splits <
+                                   options.max_untangle_flips) {
+        ++round;
+        if (!try_flips() && !try_fork_splits() && !try_edge_splits()) {
             result.untangle_stuck = true;
             break;
         }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -108,6 +109,10 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
     const Overlay* overlay = options.overlay;
     for (Spoke& s : spokes) {
         s.path = propagation->shortest_path(g.location(s.to));
+        if (!options.check_validity) {
+            if (s.path.size() < 2) return "no geodesic to coarse vertex " + std::to_string(s.to.idx());
+            continue;
+        }
         std::string why = check_spoke(g, s, s.path, theta);
         if (why.empty()) continue;
         if (!options.region_fallback) return why;
@@ -153,6 +158,15 @@ SplitResult connect_new_vertex(GeodesicTriangulation& g, const SurfacePoint& at,
     result.done = true;
     result.vertex = v;
     return result;
+}
+
+/// How many leading points the polylines p and q have in common (within 1e-9 of T's size: the same geodesic
+/// traced by two propagations can differ in the last bits of its edge crossings).
+std::size_t common_prefix(const Mesh& mesh, const Polyline& p, const Polyline& q) {
+    const double tolerance = 1e-9 * mesh.size();
+    std::size_t n = 0;
+    while (n < p.size() && n < q.size() && (mesh.point(p[n]) - mesh.point(q[n])).norm() <= tolerance) ++n;
+    return n;
 }
 
 }  // namespace
@@ -259,7 +273,7 @@ SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoin
     }
     std::string why = find_spokes(g, point, spokes, options);
     // The three geodesics leave p in the counter-clockwise order of f's corners, and apart from each other.
-    if (why.empty()) {
+    if (why.empty() && options.check_validity) {
         const double theta = cone_angle(mesh, point);
         std::array<double, 3> out{};
         for (std::size_t k = 0; k < 3; ++k) out[k] = polar_angle(mesh, spokes[k].path[0], spokes[k].path[1]);
@@ -272,7 +286,7 @@ SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoin
         if (!(smallest > detail::k_min_new_corner) || std::abs(turn - theta) > 1e-9 * theta)
             why = "the new geodesics do not leave the split point in the order of the face's corners";
     }
-    for (std::size_t k = 0; k < 3 && why.empty(); ++k)
+    for (std::size_t k = 0; k < 3 && why.empty() && options.check_validity; ++k)
         for (std::size_t j = k + 1; j < 3 && why.empty(); ++j) {
             const std::string meeting = detail::first_meeting(mesh, spokes[k].path, {{spokes[j].path, 0, "p-y"}});
             if (!meeting.empty()) why = "two new geodesics meet: " + meeting;
@@ -282,6 +296,80 @@ SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoin
         return result;
     }
     return connect_new_vertex(g, point, [&](VertexHandle v) { coarse.split(f, v); }, {}, spokes);
+}
+
+std::vector<Fork> find_forks(const GeodesicTriangulation& g, VertexHandle a) {
+    const CoarseMesh& coarse = g.coarse();
+    const Mesh& mesh = g.fine().mesh;
+    std::vector<HalfedgeHandle> fan;  // counter-clockwise
+    for (HalfedgeHandle h : coarse.voh_ccw_range(a)) fan.push_back(h);
+    const std::size_t n = fan.size();
+    // shared[i]: the points that fan[i] and fan[i + 1] have in common from a (2 or more: a first segment).
+    std::vector<std::size_t> shared(n);
+    for (std::size_t i = 0; i < n; ++i) shared[i] = common_prefix(mesh, g.path(fan[i]), g.path(fan[(i + 1) % n]));
+    const auto apart = std::find_if(shared.begin(), shared.end(), [](std::size_t k) { return k < 2; });
+    if (apart == shared.end()) return {};  // the whole fan runs together: no side to split it from
+    std::vector<Fork> forks;
+    const std::size_t start = static_cast<std::size_t>(apart - shared.begin()) + 1;
+    for (std::size_t k = 0; k < n;) {
+        const std::size_t i = (start + k) % n;
+        std::size_t run = 1, common = std::numeric_limits<std::size_t>::max();
+        while (k + run < n && shared[(i + run - 1) % n] >= 2) {
+            common = std::min(common, shared[(i + run - 1) % n]);
+            ++run;
+        }
+        if (run >= 2) forks.push_back({fan[i], static_cast<int>(run), common});
+        k += run;
+    }
+    return forks;
+}
+
+SplitResult split_fork(GeodesicTriangulation& g, const Fork& fork, const SplitOptions& options) {
+    CoarseMesh& coarse = g.coarse();
+    const VertexHandle a = coarse.from_vertex_handle(fork.first);
+    std::vector<HalfedgeHandle> run{fork.first};
+    for (int k = 1; k < fork.count; ++k) run.push_back(coarse.opposite_halfedge_handle(coarse.prev_halfedge_handle(run.back())));
+    // The edges just before and after the run, clockwise and counter-clockwise: v is joined to their far ends.
+    const VertexHandle before = coarse.to_vertex_handle(coarse.next_halfedge_handle(coarse.opposite_halfedge_handle(run.front())));
+    const VertexHandle after = coarse.to_vertex_handle(coarse.opposite_halfedge_handle(coarse.prev_halfedge_handle(run.back())));
+    SplitResult result;
+    const std::string name = "the fork at coarse vertex " + std::to_string(a.idx());
+    if (fork.count < 2 || before == after) {
+        result.reason = name + " is the whole fan of its vertex";
+        return result;
+    }
+
+    if (fork.common < 2) throw InvalidInput("split_fork: not a fork");
+    for (HalfedgeHandle h : run)
+        if (g.path(h).size() <= fork.common) {
+            result.reason = name + ": its point is the far end of the geodesic to coarse vertex " +
+                            std::to_string(coarse.to_vertex_handle(h).idx());
+            return result;
+        }
+
+    // The polylines from the fork's point: back to a along the common part, and on to each end of the run.
+    const Polyline& first = g.path(run.front());
+    const SurfacePoint at = first[fork.common - 1];
+    std::vector<std::pair<VertexHandle, Polyline>> paths{
+        {a, Polyline(first.rend() - static_cast<long>(fork.common), first.rend())}};
+    for (HalfedgeHandle h : run) {
+        const Polyline& line = g.path(h);
+        Polyline onward{at};
+        onward.insert(onward.end(), line.begin() + static_cast<long>(fork.common), line.end());
+        paths.emplace_back(coarse.to_vertex_handle(h), std::move(onward));
+    }
+
+    std::vector<Spoke> spokes(2);
+    spokes[0].to = before;
+    spokes[1].to = after;
+    SplitOptions unchecked = options;
+    unchecked.check_validity = false;
+    const std::string why = find_spokes(g, at, spokes, unchecked);
+    if (!why.empty()) {
+        result.reason = name + ": " + why;
+        return result;
+    }
+    return connect_new_vertex(g, at, [&](VertexHandle v) { coarse.vertex_split(v, a, before, after); }, paths, spokes);
 }
 
 }  // namespace geotri

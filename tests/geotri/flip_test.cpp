@@ -341,6 +341,9 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
         "cad/pinion.off",
         // Two quads of one sweep wanted the same new edge here once, and the second flip failed.
         "classic/horse.ply"};
+    // Its smallest bones are tetrahedra whose geodesics wind twice around a vertex: no flip or split that
+    // untangling tries lowers the violation count there (not mended yet: issue 4).
+    const std::string left_invalid = "anatomy/footbones.ply";
     int invalid = 0, made_valid = 0;
     for (const std::string& name : names) {
         const test::SharedMesh mesh = test::shared_mesh(name);
@@ -360,8 +363,10 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
         EXPECT_EQ(check.valid, r.valid_after) << name;
         EXPECT_EQ(check.violation_count, r.violations_after) << name;
         EXPECT_LE(total(r.violations_after), total(r.violations_before)) << name;
+        if (name != left_invalid) {
+            EXPECT_TRUE(r.valid_after) << name << ":\n" << describe(check);
+        }
         if (r.valid_before) {
-            EXPECT_TRUE(r.valid_after) << name;
             EXPECT_GE(r.angles_after.min_deg, r.angles_before.min_deg) << name;
         } else {
             ++invalid;
@@ -373,8 +378,8 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
         std::cout << "[ flip     ] " << name << ": " << g.coarse().n_faces() << " faces, "
                   << (r.valid_before ? "valid" : "invalid") << " -> " << (r.valid_after ? "valid" : "INVALID")
                   << " (" << total(r.violations_before) << " -> " << total(r.violations_after)
-                  << " violations), " << r.untangle_flips << " untangle + " << r.improve_flips
-                  << " improve flips, min corner " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg
+                  << " violations), " << r.untangle_flips << " untangle flips + " << r.untangle_fork_splits
+                  << " fork splits + " << r.improve_flips << " improve flips, min corner " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg
                   << "°, " << r.seconds << " s\n";
     }
     std::cout << "[ flip     ] " << made_valid << " of " << invalid << " invalid traced G became valid\n";

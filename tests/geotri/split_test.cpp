@@ -220,5 +220,78 @@ TEST(Split, every_split_of_a_traced_vertebra_leaves_g_valid) {
     check_every_split(g, "lumbar vertebra", 3);  // every third: each check builds the overlay
 }
 
+/// The anchor (a CAD part of genus 4) decimated to 320 faces and traced: trace leaves forks there, pairs of
+/// geodesics that leave a coarse vertex together and part at a saddle vertex of T.
+GeodesicTriangulation traced_anchor() {
+    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off"));
+    GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 320));
+    trace(g);
+    return g;
+}
+
+/// Violations of condition 2 (corners in order) that name coarse vertex v.
+int order_violations_at(const ValidationReport& r, int v) {
+    return static_cast<int>(std::count_if(r.violations.begin(), r.violations.end(), [&](const Violation& x) {
+        return x.condition == 2 && std::find(x.coarse_vertices.begin(), x.coarse_vertices.end(), v) != x.coarse_vertices.end();
+    }));
+}
+
+TEST(Split, fork_split_parts_the_geodesics_at_the_saddle_and_keeps_their_lengths) {
+    GeodesicTriangulation g = traced_anchor();
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    std::vector<Fork> forks;
+    for (auto v : g.coarse().vertices())
+        for (const Fork& f : find_forks(g, v)) forks.push_back(f);
+    ASSERT_FALSE(forks.empty()) << "the traced anchor has no fork any more: the test needs another case";
+    const ValidationReport before = validate(g);
+    ASSERT_FALSE(before.valid);
+
+    int done = 0;
+    for (const Fork& fork : forks) {
+        GeodesicTriangulation copy = g;
+        const VertexHandle a = copy.coarse().from_vertex_handle(fork.first);
+        // The run's far ends and old lengths, counter-clockwise from `first`.
+        std::vector<std::pair<VertexHandle, double>> run;
+        for (auto h = fork.first; static_cast<int>(run.size()) < fork.count;
+             h = copy.coarse().opposite_halfedge_handle(copy.coarse().prev_halfedge_handle(h)))
+            run.emplace_back(copy.coarse().to_vertex_handle(h), copy.length(copy.coarse().edge_handle(h)));
+        const std::size_t faces = copy.coarse().n_faces();
+        const SplitResult r = split_fork(copy, fork);
+        if (!r.done) {
+            std::cout << "[ refused  ] " << r.reason << "\n";
+            continue;
+        }
+        ++done;
+        EXPECT_EQ(copy.coarse().n_faces(), faces + 2);
+        // Shortest geodesics from one point part only at a saddle vertex of T.
+        const SurfacePoint& at = copy.location(r.vertex);
+        ASSERT_EQ(at.kind, geodesic::PointKind::vertex);
+        EXPECT_GT(mesh.cone_angle(at.vertex), 2.0 * M_PI);
+        // a-v is the common part, and a-v followed by v-b is the old geodesic a-b.
+        const auto av = copy.coarse().find_halfedge(a, r.vertex);
+        ASSERT_TRUE(av.is_valid());
+        const double common = copy.length(copy.coarse().edge_handle(av));
+        for (const auto& [b, old_length] : run) {
+            const auto vb = copy.coarse().find_halfedge(r.vertex, b);
+            ASSERT_TRUE(vb.is_valid());
+            EXPECT_NEAR(common + copy.length(copy.coarse().edge_handle(vb)), old_length, 1e-12 * old_length);
+        }
+        // The polylines are still geodesics between their ends (condition 1), and a has fewer bad corners.
+        const ValidationReport after = validate(copy);
+        EXPECT_EQ(after.violation_count[0], 0) << describe(after);
+        EXPECT_LT(order_violations_at(after, a.idx()), order_violations_at(before, a.idx())) << describe(after);
+    }
+    EXPECT_GT(done, 0);
+}
+
+TEST(Split, untangling_splits_the_forks_that_no_flip_mends) {
+    GeodesicTriangulation g = traced_anchor();
+    const FlipToDelaunayResult r = flip_to_delaunay(g);
+    EXPECT_FALSE(r.valid_before);
+    EXPECT_TRUE(r.valid_after) << describe(validate(g));
+    EXPECT_GE(r.untangle_fork_splits, 1);
+    expect_valid_with_area(g);
+}
+
 }  // namespace
 }  // namespace geotri

@@ -52,9 +52,11 @@ struct FlipToDelaunayResult {
     std::vector<Violation> remaining;  ///< the violations left when G is still invalid
 
     int untangle_flips = 0;      ///< flips that strictly lowered the violation count
-    int untangle_rejected = 0;   ///< flips tried while untangling that did not lower it (G kept as it was)
-    int untangle_refused = 0;    ///< not flippable, or no c-d geodesic
-    bool untangle_stuck = false; ///< untangling ended with violations left and no flip that lowers their count
+    int untangle_fork_splits = 0; ///< fork splits (split_fork()) that strictly lowered it, where no flip did
+    int untangle_edge_splits = 0; ///< edge splits at the middle that strictly lowered it, where nothing else did
+    int untangle_rejected = 0;   ///< flips and splits tried while untangling that did not lower it (G kept as it was)
+    int untangle_refused = 0;    ///< not flippable, no c-d geodesic, or a fork that could not be split
+    bool untangle_stuck = false; ///< untangling ended with violations left and no operation that lowers their count
 
     int improve_flips = 0;
     int improve_plans = 0;          ///< flips computed (one propagation each) while improving

@@ -6,6 +6,7 @@
 #include <geotri/geodesic_triangulation.h>
 
 #include <string>
+#include <vector>
 
 namespace geotri {
 
@@ -15,6 +16,10 @@ class ExactGeodesic;
 struct Overlay;
 
 struct SplitOptions {
+    /// Check that the result is valid around the split (the default, and what keeps a valid G valid). When false,
+    /// the new geodesics are the shortest ones, whatever they do: for callers that judge the result on all of G
+    /// themselves (untangling an invalid G).
+    bool check_validity = true;
     /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
     geodesic::ExactGeodesic* propagation = nullptr;
     /// When the shortest geodesic from the new vertex leaves the patch that it must run in, try the shortest path
@@ -48,5 +53,24 @@ SplitResult split_edge(GeodesicTriangulation& g, OpenMesh::EdgeHandle e, double 
 /// that G stays valid. Preconditions: G valid around f and f's polylines traced.
 SplitResult split_face(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& p,
                        const SplitOptions& options = {});
+
+/// A fork at coarse vertex a: `count` consecutive edges leaving a (counter-clockwise from `first`) whose geodesics
+/// run together from a for their first `common` points, the last of which is where they part (shortest geodesics from one point part only at saddle
+/// vertices of T). The corners between them are zero, so G is invalid there; trace makes such forks on CAD parts.
+struct Fork {
+    OpenMesh::HalfedgeHandle first;
+    int count = 0;
+    std::size_t common = 0;
+};
+
+/// The forks at a: the maximal runs (two edges or more) of consecutive edges leaving a whose polylines share their
+/// first segment, and that leave a on both sides of the run (so that the run is not the whole fan).
+std::vector<Fork> find_forks(const GeodesicTriangulation& g, OpenMesh::VertexHandle a);
+
+/// Splits a fork (the inverse of an edge collapse, OpenMesh's vertex_split): a new coarse vertex v at the fork's
+/// point takes over the run's edges, whose polylines lose the common part; a-v gets the common part; v is joined
+/// to the vertices just before and after the run by shortest geodesics. Not checked: it is for untangling, which
+/// judges the result on all of G. Refused when the fork's point is the far end of an edge of the run.
+SplitResult split_fork(GeodesicTriangulation& g, const Fork& fork, const SplitOptions& options = {});
 
 }  // namespace geotri
