@@ -92,7 +92,6 @@ int run(tools::Tool& tool) {
         }
         summary.add("untangle_flips", r.untangle_flips);
         summary.add("untangle_fork_splits", r.untangle_fork_splits);
-        summary.add("untangle_edge_splits", r.untangle_edge_splits);
         summary.add("untangle_rejected", r.untangle_rejected);
         summary.add("untangle_refused", r.untangle_refused);
         summary.add("untangle_stuck", r.untangle_stuck);
@@ -120,8 +119,8 @@ int run(tools::Tool& tool) {
         const char* program = tool.program().c_str();
         std::fprintf(stderr, "%s: before: %s (%s)\n", program, r.valid_before ? "valid" : "INVALID",
                      counts(r.violations_before).c_str());
-        std::fprintf(stderr, "%s: untangle: %d flips, %d fork splits, %d edge splits kept, %d tried and undone, %d not possible%s\n",
-                     program, r.untangle_flips, r.untangle_fork_splits, r.untangle_edge_splits, r.untangle_rejected, r.untangle_refused,
+        std::fprintf(stderr, "%s: untangle: %d flips and %d fork splits kept, %d tried and undone, %d not possible%s\n",
+                     program, r.untangle_flips, r.untangle_fork_splits, r.untangle_rejected, r.untangle_refused,
                      r.untangle_stuck ? "; stuck: no operation lowers the violations left" : "");
         if (r.improve_skipped) {
             std::fprintf(stderr, "%s: improve: skipped, G is not valid\n", program);

@@ -313,31 +313,10 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         }
         return false;
     };
-    // Where neither helps: split an edge that a violation names at its middle, which gives small components and
-    // thin parts the vertices that their geodesics need.
-    auto try_edge_splits = [&] {
-        SplitOptions unchecked = split_options;
-        unchecked.check_validity = false;
-        for (int index : candidate_edges(g.coarse(), report)) {
-            GeodesicTriangulation trial = g;
-            if (!split_edge(trial, EdgeHandle(index), 0.5, unchecked).done) {
-                ++result.untangle_refused;
-                continue;
-            }
-            if (lowers_violations(trial, report)) {
-                g = std::move(trial);
-                ++result.untangle_edge_splits;
-                return true;
-            }
-            ++result.untangle_rejected;
-        }
-        return false;
-    };
     int round = 0;
-    while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_edge_splits <
-                                   options.max_untangle_flips) {
+    while (!report.valid && result.untangle_flips + result.untangle_fork_splits < options.max_untangle_flips) {
         ++round;
-        if (!try_flips() && !try_fork_splits() && !try_edge_splits()) {
+        if (!try_flips() && !try_fork_splits()) {
             result.untangle_stuck = true;
             break;
         }

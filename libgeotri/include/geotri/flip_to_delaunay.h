@@ -53,7 +53,6 @@ struct FlipToDelaunayResult {
 
     int untangle_flips = 0;      ///< flips that strictly lowered the violation count
     int untangle_fork_splits = 0; ///< fork splits (split_fork()) that strictly lowered it, where no flip did
-    int untangle_edge_splits = 0; ///< edge splits at the middle that strictly lowered it, where nothing else did
     int untangle_rejected = 0;   ///< flips and splits tried while untangling that did not lower it (G kept as it was)
     int untangle_refused = 0;    ///< not flippable, no c-d geodesic, or a fork that could not be split
     bool untangle_stuck = false; ///< untangling ended with violations left and no operation that lowers their count
@@ -74,9 +73,9 @@ struct FlipToDelaunayResult {
 };
 
 /// Untangles G, then improves it (as options say). Untangle: while G is invalid, flip one at a time the edges
-/// involved in violations (named by validate(), or at a vertex or face it names), keeping a flip only when it
-/// strictly lowers the number of violations (without raising that of conditions 1-3); it stops when G is valid
-/// or no such flip is left. Improve (only on a valid G): sweeps
+/// involved in violations (named by validate(), or at a vertex or face it names), and where no flip helps split
+/// the forks at the vertices involved (split_fork()), keeping an operation only when it strictly lowers the number
+/// of violations (without raising that of conditions 1-3); it stops when G is valid or no such operation is left. Improve (only on a valid G): sweeps
 /// over the edges, flipping by the criterion with plan_flip()'s local checks, until a sweep makes no
 /// flip or max_improve_passes is reached; it terminates because each flip strictly improves a finite order
 /// (criterion angle: the sorted vector of all corner angles), and it never makes a valid G invalid (a final
