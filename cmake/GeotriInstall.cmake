@@ -87,6 +87,10 @@ function(geotri_install_tool target)
     set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN/${_lib}")
   endif()
   install(TARGETS ${target} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  # Its man page, made from docs/tools.md and its --help by scripts/update-docs.sh.
+  if(EXISTS ${PROJECT_SOURCE_DIR}/docs/man/${target}.1)
+    install(FILES ${PROJECT_SOURCE_DIR}/docs/man/${target}.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+  endif()
 endfunction()
 
 if(GEOTRI_BUILD_TOOLS)

@@ -68,7 +68,9 @@ int run(tools::Tool& tool) {
     CLI::App& app = tool.app;
     app.description("Checks that a geodesic triangulation (.gtri) is valid: its edges are geodesics of T, the\n"
                     "geodesics at each vertex are in order and wind once, no two of them meet except at a common\n"
-                    "end, and they cut T into one disk per coarse face. Exit code 0 if valid, 3 if not.");
+                    "end, and they cut T into one disk per coarse face.");
+    tool.set_help_footer({"geotri-check bone.gtri", "geotri-check bone.gtri --json --quiet > bone.check.json"},
+                         "the geodesic triangulation is valid", {"3  the geodesic triangulation is not valid (the report names the violations)"});
     std::string input, fine_override;
     app.add_option("IN", input, "The geodesic triangulation: .gtri")->required()->check(CLI::ExistingFile);
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")

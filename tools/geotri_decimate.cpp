@@ -34,6 +34,8 @@ int run(tools::Tool& tool) {
     app.description("Decimates a closed triangle mesh by halfedge collapses: the coarse vertices are input vertices at\n"
                     "their exact positions, and every component keeps its topology (genus). The target is split\n"
                     "between the components in proportion to their area.");
+    tool.set_help_footer({"geotri-decimate bone.stl -o bone.coarse.off --faces 320",
+                          "geotri-decimate bone.stl -o bone.coarse.off --coarsest --json"});
     Arguments args;
     app.add_option("INPUT", args.input, "Closed triangle mesh: .stl, .off, .obj or .ply")
         ->required()

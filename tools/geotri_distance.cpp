@@ -147,6 +147,8 @@ int run(tools::Tool& tool) {
     app.description("Exact geodesic distances on a triangle mesh, from one or more source points.\n"
                     "SPEC is a surface point: v:I (vertex I), e:I,J:T (on edge I-J at (1-T)*p(I) + T*p(J)) or\n"
                     "f:I:B0,B1,B2 (in face I, barycentric coordinates in its vertex order).");
+    tool.set_help_footer({"geotri-distance bone.stl --source v:0 -o bone.distance.ply",
+                          "geotri-distance bone.stl -s v:0 -s f:12:0.2,0.3,0.5 -o d.txt --path-to v:900 --path-out path.obj"});
     Arguments args;
     app.add_option("MESH", args.mesh_path, "Triangle mesh: .stl, .off, .obj or .ply")
         ->required()
@@ -157,10 +159,10 @@ int run(tools::Tool& tool) {
         ->allow_extra_args(false)
         ->check(spec_validator());
     app.add_option("--stop", args.stops,
-                   "Stop once this point's distance is final (repeatable); farther vertices report inf")
+                   "Stop once this point's distance is final (repeatable; default: none); farther vertices report inf")
         ->allow_extra_args(false)
         ->check(spec_validator());
-    app.add_option("--max-distance", args.max_distance, "Compute nothing farther than this; farther is inf")
+    app.add_option("--max-distance", args.max_distance, "Compute nothing farther than this; farther is inf (default: no limit)")
         ->check(CLI::NonNegativeNumber);
     app.add_option("-o,--output", args.output,
                    "Distances: .txt (one line per vertex, in load order) or .ply (the mesh with a distance property)")

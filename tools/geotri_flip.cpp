@@ -36,7 +36,9 @@ int run(tools::Tool& tool) {
     CLI::App& app = tool.app;
     app.description("Makes a geodesic triangulation (.gtri) valid by edge flips (untangle), then flips edges while\n"
                     "that improves the triangles (geodesic Delaunay), and writes the result. Every new edge is an\n"
-                    "exact shortest geodesic. Exit code 0 if the result is valid, 3 if it is written but invalid.");
+                    "exact geodesic.");
+    tool.set_help_footer({"geotri-flip bone.gtri -o bone.flip.gtri", "geotri-flip bone.gtri -o bone.flip.gtri --criterion length --json"},
+                         "the result is written, and it is valid", {"3  the result is written, but untangling could not make it valid (the report says what is left)"});
     std::string input, output, fine_override, criterion_name = "angle";
     app.add_option("IN", input, "The geodesic triangulation: .gtri")->required()->check(CLI::ExistingFile);
     app.add_option("-o,--output", output, "The flipped geodesic triangulation: .gtri")

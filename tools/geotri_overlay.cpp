@@ -39,6 +39,8 @@ int run(tools::Tool& tool) {
                     "each tagged with its patch (coarse face), its fine face and a colour that differs between\n"
                     "adjacent patches. Reports the patches that are not disks bounded by their three geodesics\n"
                     "(validity condition 4); the overlay is written in either case.");
+    tool.set_help_footer({"geotri-overlay bone.gtri -o bone.overlay.vtu --curves bone.geodesics.vtp",
+                          "geotri-overlay bone.gtri -o bone.overlay.ply"});
     Arguments args;
     app.add_option("IN", args.input, "The geodesic triangulation: .gtri")->required()->check(CLI::ExistingFile);
     app.add_option("-o,--output", args.output,

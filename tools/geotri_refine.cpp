@@ -29,8 +29,10 @@ int run(tools::Tool& tool) {
     app.description("Refines a valid geodesic triangulation (.gtri): splits the longest edge at its geodesic midpoint\n"
                     "until no edge is longer than --max-length and G has --faces faces, then inserts circumcentres\n"
                     "until every corner angle is at least --min-angle. Every new edge is an exact geodesic, and G\n"
-                    "stays valid after every step. Exit code 0 if the result is valid, 3 if it is written but invalid.\n"
-                    "Example: geotri-refine bone.flip.gtri -o bone.fine.gtri --min-angle 25");
+                    "stays valid after every step.");
+    tool.set_help_footer({"geotri-refine bone.flip.gtri -o bone.fine.gtri --min-angle 25",
+                          "geotri-refine bone.flip.gtri -o bone.fine.gtri --faces 2000 --json"},
+                         "the result is written, and it is valid", {"3  the result is written, but it is not valid (the input was not)"});
     std::string input, output, fine_override;
     geotri::RefineOptions options;
     bool no_flip = false;

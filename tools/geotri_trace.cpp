@@ -35,6 +35,8 @@ int run(tools::Tool& tool) {
     app.description("Makes every edge of a coarse mesh an exact geodesic of the fine mesh FINE, and writes the\n"
                     "geodesic triangulation as a .gtri file (docs/gtri-format.md). Coarse vertices that coincide\n"
                     "with vertices of FINE map to them; the others move to the closest point of FINE.");
+    tool.set_help_footer({"geotri-trace bone.stl bone.coarse.off -o bone.gtri",
+                          "geotri-trace bone.stl bone.coarse.off -o bone.gtri --threads 4 --json"});
     Arguments args;
     app.add_option("FINE", args.fine_path, "The fine mesh T: closed triangle mesh (.stl, .off, .obj, .ply)")
         ->required()

@@ -47,6 +47,19 @@ Tool::Tool(std::string program, int argc, char** argv)
         ->capture_default_str();
 }
 
+void Tool::set_help_footer(const std::vector<std::string>& examples, const std::string& done,
+                           const std::vector<std::string>& more_exit_codes) {
+    std::string footer = "Examples:\n";
+    for (const std::string& example : examples) footer += "  " + example + "\n";
+    footer += "\nExit codes:\n"
+              "  0  " + done + "\n"
+              "  1  bad input, or a failure while working (one line on stderr names the file and the problem)\n"
+              "  2  the command line is wrong\n";
+    for (const std::string& code : more_exit_codes) footer += "  " + code + "\n";
+    footer.pop_back();  // CLI11 ends the help with a newline of its own
+    app.footer(footer);
+}
+
 void Tool::parse() {
     app.parse(argc_, argv_);
 #ifdef _OPENMP

@@ -33,6 +33,12 @@ public:
     /// CLI::ParseError, which run_tool() reports as a usage error (or answers, for --help and --version).
     void parse();
 
+    /// Ends --help with `examples` (command lines, one per entry) and the exit codes: 0 (`done`: what it means for
+    /// this tool), 1 and 2, which every tool shares, and `more_exit_codes` (lines such as "3  written, but
+    /// invalid") when the tool has others.
+    void set_help_footer(const std::vector<std::string>& examples, const std::string& done = "done",
+                         const std::vector<std::string>& more_exit_codes = {});
+
     /// Whether stderr may carry progress and a summary: not --quiet. (--json only changes stdout.)
     bool verbose() const { return !common.quiet; }
 
