@@ -75,11 +75,11 @@ int run(tools::Tool& tool) {
     options.strategy = args.strategy == "priority-queue" ? geotri::DecimateStrategy::priority_queue
                                                          : geotri::DecimateStrategy::multiple_choice;
     options.progress = [&progress](const geotri::DecimateProgress& p) {
-        const double to_remove = double(p.fine_faces) - double(p.target_faces);
-        if (to_remove > 0) progress.update((double(p.fine_faces) - double(p.current_faces)) / to_remove);
+        progress.update(static_cast<long long>(p.fine_faces) - static_cast<long long>(p.current_faces),
+                        static_cast<long long>(p.fine_faces) - static_cast<long long>(p.target_faces));
         return true;
     };
-    progress.stage("decimating");
+    progress.stage("decimating: faces removed");
     const double decimate_start = tools::now_seconds();
     const geotri::DecimateResult result = geotri::decimate(fine, options);
     const double decimate_seconds = tools::now_seconds() - decimate_start;

@@ -59,10 +59,8 @@ int run(tools::Tool& tool) {
     geotri::GeodesicTriangulation g(fine, std::move(coarse));
     geotri::TraceOptions options;
     options.threads = tool.common.threads;
-    options.progress = [&progress](int done, int total) {
-        progress.update(static_cast<double>(done) / static_cast<double>(total));
-    };
-    progress.stage("tracing");
+    options.progress = [&progress](int done, int total) { progress.update(done, total); };
+    progress.stage("tracing: propagations");
     geotri::TraceResult traced;
     try {
         traced = geotri::trace(g, options);
