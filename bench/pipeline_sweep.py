@@ -4,7 +4,8 @@ with the geotri tools, and prints a Markdown table: faces, coarse faces, validit
 minimum corner angle) and at the end (with the conditions that failed), and the wall time of each tool, loading and
 writing included. G is refined only when flip made it valid.
 
-    bench/pipeline_sweep.py [--faces N] [--min-angle A] [--threads N] [--build DIR] [--data DIR] [MESH ...]
+    bench/pipeline_sweep.py [--faces N] [--min-angle A] [--threads N] [--timeout S] [--build DIR] [--data DIR]
+                            [MESH ...]
 
 Meshes whose topology needs more than N faces are decimated to the coarsest that it allows instead. The outputs
 go to a temporary folder that is removed at the end.
@@ -20,11 +21,18 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
+TIMEOUT = 600.0  # seconds per tool run; set by --timeout
+
+
 def run(tool, args, build):
-    """Runs geotri-TOOL with --json --quiet; returns (exit code, parsed JSON or None, wall seconds, stderr)."""
+    """Runs geotri-TOOL with --json --quiet; returns (exit code, parsed JSON or None, wall seconds, stderr). A run
+    that takes longer than TIMEOUT is stopped: no JSON, and stderr says so."""
     start = time.perf_counter()
-    done = subprocess.run([str(build / "tools" / f"geotri-{tool}"), "--json", "--quiet", *args],
-                          capture_output=True, text=True)
+    try:
+        done = subprocess.run([str(build / "tools" / f"geotri-{tool}"), "--json", "--quiet", *args],
+                              capture_output=True, text=True, timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        return None, None, time.perf_counter() - start, f"stopped after {TIMEOUT:.0f} s"
     seconds = time.perf_counter() - start
     try:
         summary = json.loads(done.stdout) if done.stdout.strip() else None
@@ -108,10 +116,13 @@ def main():
     parser.add_argument("--faces", type=int, default=320)
     parser.add_argument("--threads", type=int, default=0)
     parser.add_argument("--min-angle", type=float, default=25.0, help="refine to this angle (0: no refinement)")
+    parser.add_argument("--timeout", type=float, default=TIMEOUT, help="stop a tool run after this many seconds")
     parser.add_argument("--build", type=pathlib.Path, default=ROOT / "build")
     parser.add_argument("--data", type=pathlib.Path, default=ROOT.parent / "shared" / "data")
     options = parser.parse_args()
     options.data = options.data.resolve()
+    global TIMEOUT
+    TIMEOUT = options.timeout
     meshes = options.meshes or sorted(p for p in options.data.rglob("*")
                                       if p.suffix in (".off", ".obj", ".ply", ".stl") and p.is_file())
     if not meshes:
