@@ -111,6 +111,7 @@ STAGES = ["decimate", "trace", "flip", "refine", "check", "overlay"]
 
 
 def main():
+    global TIMEOUT
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("meshes", nargs="*", type=pathlib.Path)
     parser.add_argument("--faces", type=int, default=320)
@@ -121,7 +122,6 @@ def main():
     parser.add_argument("--data", type=pathlib.Path, default=ROOT.parent / "shared" / "data")
     options = parser.parse_args()
     options.data = options.data.resolve()
-    global TIMEOUT
     TIMEOUT = options.timeout
     meshes = options.meshes or sorted(p for p in options.data.rglob("*")
                                       if p.suffix in (".off", ".obj", ".ply", ".stl") and p.is_file())
