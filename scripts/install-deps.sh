@@ -3,6 +3,7 @@
 #
 #   scripts/install-deps.sh            compiler, CMake, Eigen, OpenMesh, GoogleTest, CLI11
 #   scripts/install-deps.sh --bench    the same, plus CGAL for the benchmarks
+#   scripts/install-deps.sh --render   the same, plus VTK's Python bindings and Xvfb for examples/render.py
 #
 # Runs apt-get (update, then install) only when something is missing: as root, or through sudo otherwise.
 set -euo pipefail
@@ -12,8 +13,9 @@ packages=(cmake g++ make libeigen3-dev libopenmesh-dev libgtest-dev libcli11-dev
 for arg in "$@"; do
   case "$arg" in
     --bench) packages+=(libcgal-dev) ;;
+    --render) packages+=(python3-vtk9 xvfb xauth libgl1-mesa-dri) ;;
     -h | --help)
-      sed -n '2,7s/^# \{0,1\}//p' "$0"
+      sed -n '2,8s/^# \{0,1\}//p' "$0"
       exit 0
       ;;
     *)
