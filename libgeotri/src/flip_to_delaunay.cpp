@@ -277,38 +277,35 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     flip_options.propagation = &propagation;
     SplitOptions split_options;
     split_options.propagation = &propagation;
+    // Does `operation` on a copy of G, and keeps the copy when the operation is possible and lowers the count.
+    auto keep_if_better = [&](auto operation, int& kept) {
+        GeodesicTriangulation trial = g;
+        if (!operation(trial)) {
+            ++result.untangle_refused;
+            return false;
+        }
+        if (!lowers_violations(trial, report)) {
+            ++result.untangle_rejected;
+            return false;
+        }
+        g = std::move(trial);
+        ++kept;
+        return true;
+    };
     auto try_flips = [&] {
         for (int index : candidate_edges(g.coarse(), report)) {
             const EdgeHandle e(index);
             if (g.coarse().is_boundary(e) || !g.coarse().is_flip_ok(e)) continue;
-            GeodesicTriangulation trial = g;
-            if (!flip(trial, e, flip_options).accepted()) {
-                ++result.untangle_refused;
-                continue;
-            }
-            if (lowers_violations(trial, report)) {
-                g = std::move(trial);
-                ++result.untangle_flips;
-                return true;
-            }
-            ++result.untangle_rejected;
+            auto flip_e = [&](GeodesicTriangulation& trial) { return flip(trial, e, flip_options).accepted(); };
+            if (keep_if_better(flip_e, result.untangle_flips)) return true;
         }
         return false;
     };
     auto try_fork_splits = [&] {
         for (int index : candidate_vertices(g.coarse(), report)) {
             for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(index))) {
-                GeodesicTriangulation trial = g;
-                if (!split_fork(trial, fork, split_options).done) {
-                    ++result.untangle_refused;
-                    continue;
-                }
-                if (lowers_violations(trial, report)) {
-                    g = std::move(trial);
-                    ++result.untangle_fork_splits;
-                    return true;
-                }
-                ++result.untangle_rejected;
+                auto split = [&](GeodesicTriangulation& trial) { return split_fork(trial, fork, split_options).done; };
+                if (keep_if_better(split, result.untangle_fork_splits)) return true;
             }
         }
         return false;
