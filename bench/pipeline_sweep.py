@@ -69,6 +69,8 @@ def sweep_one(mesh, options, work):
     if not dec["target_reached"]:  # the topology needs more faces: take the coarsest
         code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--coarsest"],
                                                 options.build)
+        if code != 0:
+            return stop(f"--coarsest refused: {err.splitlines()[-1] if err else code}")
     row += [str(dec["faces"]), str(dec["coarse_faces"])]
     code, _, times["trace"], err = run("trace", [str(mesh), f"{stem}.off", "-o", f"{stem}.gtri", *threads],
                                        options.build)

@@ -117,8 +117,9 @@ void build_geodesic_triangulation(const std::shared_ptr<const geotri::FineMesh>&
     // Traced geodesics may cross or fold over one another; flips and fork splits untangle them, then flips make
     // the triangles better shaped. Untangling may not succeed on every mesh: the result says so.
     const geotri::FlipToDelaunayResult flipped = geotri::flip_to_delaunay(g);
-    std::printf("flips: %d untangling (%s before), %d towards Delaunay\n", flipped.untangle_flips,
-                flipped.valid_before ? "valid" : "invalid", flipped.improve_flips);
+    std::printf("untangling (%s before): %d flips, %d fork splits; %d flips towards Delaunay\n",
+                flipped.valid_before ? "valid" : "invalid", flipped.untangle_flips, flipped.untangle_fork_splits,
+                flipped.improve_flips);
 
     // The judge: the four validity conditions, and summary figures. It reports an invalid G, it does not throw.
     const geotri::ValidationReport report = geotri::validate(g);

@@ -89,10 +89,12 @@ std::string check_spoke(const GeodesicTriangulation& g, const Spoke& spoke, cons
     return meeting.empty() ? meeting : name + ": " + meeting;
 }
 
-/// Finds the geodesics of `spokes` from `from`: the shortest geodesics on T, then, for those that fail
-/// check_spoke(), the shortest paths inside their patch. Returns why one could not be found, or empty.
+/// Finds the geodesics of `spokes` from `from`: the shortest geodesics on T, then, when `checked`, for those that
+/// fail check_spoke(), the shortest paths inside their patch. Returns why one could not be found, or empty.
+/// Unchecked, the spokes are the shortest geodesics whatever they do: for fork splits, which untangling judges on
+/// all of G.
 std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from, std::vector<Spoke>& spokes,
-                        const SplitOptions& options) {
+                        const SplitOptions& options, bool checked) {
     const Mesh& mesh = g.fine().mesh;
     const double theta = cone_angle(mesh, from);
     std::unique_ptr<geodesic::ExactGeodesic> own;
@@ -109,7 +111,7 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
     const Overlay* overlay = options.overlay;
     for (Spoke& s : spokes) {
         s.path = propagation->shortest_path(g.location(s.to));
-        if (!options.check_validity) {
+        if (!checked) {
             if (s.path.size() < 2) return "no geodesic to coarse vertex " + std::to_string(s.to.idx());
             continue;
         }
@@ -235,7 +237,7 @@ SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, 
         spoke(c, ab, towards_b, towards_a, ca, coarse.opposite_halfedge_handle(bc), "c-a", "c-b"),
         spoke(d, ba, towards_a, towards_b, db, coarse.opposite_halfedge_handle(ad), "d-b", "d-a")};
 
-    const std::string why = find_spokes(g, m, spokes, options);
+    const std::string why = find_spokes(g, m, spokes, options, true);
     if (!why.empty()) {
         result.reason = name + ": " + why;
         return result;
@@ -271,9 +273,9 @@ SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoin
         s.around = {{g.path(xy), 1, "x-y"}, {g.path(s.corner_to), 1, "x-z"}, {g.path(yz), -1, "y-z"}};
         spokes.push_back(std::move(s));
     }
-    std::string why = find_spokes(g, point, spokes, options);
+    std::string why = find_spokes(g, point, spokes, options, true);
     // The three geodesics leave p in the counter-clockwise order of f's corners, and apart from each other.
-    if (why.empty() && options.check_validity) {
+    if (why.empty()) {
         const double theta = cone_angle(mesh, point);
         std::array<double, 3> out{};
         for (std::size_t k = 0; k < 3; ++k) out[k] = polar_angle(mesh, spokes[k].path[0], spokes[k].path[1]);
@@ -286,7 +288,7 @@ SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoin
         if (!(smallest > detail::k_min_new_corner) || std::abs(turn - theta) > 1e-9 * theta)
             why = "the new geodesics do not leave the split point in the order of the face's corners";
     }
-    for (std::size_t k = 0; k < 3 && why.empty() && options.check_validity; ++k)
+    for (std::size_t k = 0; k < 3 && why.empty(); ++k)
         for (std::size_t j = k + 1; j < 3 && why.empty(); ++j) {
             const std::string meeting = detail::first_meeting(mesh, spokes[k].path, {{spokes[j].path, 0, "p-y"}});
             if (!meeting.empty()) why = "two new geodesics meet: " + meeting;
@@ -318,7 +320,7 @@ std::vector<Fork> find_forks(const GeodesicTriangulation& g, VertexHandle a) {
             common = std::min(common, shared[(i + run - 1) % n]);
             ++run;
         }
-        if (run >= 2) forks.push_back({fan[i], static_cast<int>(run), common});
+        if (run >= 2 && run + 2 <= n) forks.push_back({fan[i], static_cast<int>(run), common});
         k += run;
     }
     return forks;
@@ -334,8 +336,8 @@ SplitResult split_fork(GeodesicTriangulation& g, const Fork& fork, const SplitOp
     const VertexHandle after = coarse.to_vertex_handle(coarse.opposite_halfedge_handle(coarse.prev_halfedge_handle(run.back())));
     SplitResult result;
     const std::string name = "the fork at coarse vertex " + std::to_string(a.idx());
-    if (fork.count < 2 || before == after) {
-        result.reason = name + " is the whole fan of its vertex";
+    if (fork.count < 2 || fork.count + 2 > static_cast<int>(coarse.valence(a)) || before == after) {
+        result.reason = name + " leaves fewer than two of its vertex's edges outside the run";
         return result;
     }
 
@@ -362,9 +364,7 @@ SplitResult split_fork(GeodesicTriangulation& g, const Fork& fork, const SplitOp
     std::vector<Spoke> spokes(2);
     spokes[0].to = before;
     spokes[1].to = after;
-    SplitOptions unchecked = options;
-    unchecked.check_validity = false;
-    const std::string why = find_spokes(g, at, spokes, unchecked);
+    const std::string why = find_spokes(g, at, spokes, options, false);
     if (!why.empty()) {
         result.reason = name + ": " + why;
         return result;

@@ -284,6 +284,50 @@ TEST(Split, fork_split_parts_the_geodesics_at_the_saddle_and_keeps_their_lengths
     EXPECT_GT(done, 0);
 }
 
+/// The cube's G with the geodesics of the first `count` edges leaving corner 0 (counter-clockwise) made to run
+/// together for a first segment, to a point on a fine edge at corner 0: a hand-made fork of `count` edges. Returns
+/// the first halfedge of the run. The polylines are no longer geodesics: only the fork's shape matters here.
+OpenMesh::HalfedgeHandle make_fork_at_corner_0(GeodesicTriangulation& g, int count) {
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    const SurfacePoint corner = g.location(VertexHandle(0));
+    const int fine_neighbour = mesh.head(*mesh.outgoing_halfedges(corner.vertex).begin());
+    const SurfacePoint together = mesh.canonical(SurfacePoint::on_edge(corner.vertex, fine_neighbour, 0.5));
+    std::vector<OpenMesh::HalfedgeHandle> fan;
+    for (auto h : g.coarse().voh_ccw_range(VertexHandle(0))) fan.push_back(h);
+    for (int k = 0; k < count; ++k) {
+        Polyline path = g.path(fan[k]);
+        path.insert(path.begin() + 1, together);
+        g.set_path(fan[k], path);
+    }
+    return fan.front();
+}
+
+TEST(Split, forks_leave_two_edges_of_the_fan_outside_and_others_are_refused) {
+    const GeodesicTriangulation cube = unit_cube_g();
+    const int valence = static_cast<int>(cube.coarse().valence(VertexHandle(0)));
+    ASSERT_EQ(valence, 6);
+    for (int count = 2; count <= valence; ++count) {
+        SCOPED_TRACE("a run of " + std::to_string(count) + " edges");
+        GeodesicTriangulation g = cube;
+        const auto first = make_fork_at_corner_0(g, count);
+        const std::vector<Fork> forks = find_forks(g, VertexHandle(0));
+        if (count + 2 <= valence) {
+            ASSERT_EQ(forks.size(), 1u);
+            EXPECT_EQ(forks[0].first, first);
+            EXPECT_EQ(forks[0].count, count);
+            EXPECT_EQ(forks[0].common, 2u);
+        } else {
+            EXPECT_TRUE(forks.empty());
+            // Asked all the same, split_fork refuses it (it would have no two distinct vertices to join).
+            const std::size_t faces = g.coarse().n_faces();
+            const SplitResult r = split_fork(g, Fork{first, count, 2});
+            EXPECT_FALSE(r.done);
+            EXPECT_NE(r.reason.find("fewer than two"), std::string::npos) << r.reason;
+            EXPECT_EQ(g.coarse().n_faces(), faces);
+        }
+    }
+}
+
 TEST(Split, untangling_splits_the_forks_that_no_flip_mends) {
     GeodesicTriangulation g = traced_anchor();
     const FlipToDelaunayResult r = flip_to_delaunay(g);

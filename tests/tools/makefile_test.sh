@@ -60,6 +60,28 @@ invalid_triangulation_is_a_result_not_a_failure)
     [ "$(sed -n 1p in_tripod.check.txt)" = "in_tripod.refined.gtri: INVALID" ] || fail "the check does not say INVALID"
     ;;
 
+upper_case_extensions_are_meshes_too)
+    # Meshes straight from CAD systems and scanners are often named Part.STL or Scan.PLY.
+    cp "$data/classic/bob_small.ply" Bob.PLY
+    pipeline -n
+    grep -q "Bob.PLY" stdout || fail "make without a target does not find Bob.PLY"
+    pipeline FACES=100 Bob.check.txt
+    expect_rc 0
+    [ "$(sed -n 1p Bob.check.txt)" = "Bob.refined.gtri: valid" ] || fail "Bob.PLY is not taken through the pipeline"
+    ;;
+
+a_failed_check_stops_make_and_leaves_no_partial_file)
+    # A broken triangulation is a failure (exit 1 or 2), not an invalid result (exit 3): make stops there.
+    cp "$data/classic/bob_small.ply" .
+    pipeline FACES=100 bob_small.flipped.gtri
+    expect_rc 0
+    head -c 100 bob_small.flipped.gtri >broken && mv broken bob_small.flipped.gtri
+    pipeline bob_small.check.txt
+    [ "$rc" -ne 0 ] || fail "make went on after geotri-check failed"
+    grep -q "bob_small.flipped.gtri: line" stderr || fail "geotri-check's error is not shown"
+    ls bob_small.refined.gtri* bob_small.check.txt* 2>/dev/null && fail "a refined triangulation or check report is left"
+    ;;
+
 missing_tools_are_named)
     cp "$data/cad/tripod.off" .
     make -f "$makefile" GEOTRI_BIN="$PWD/nowhere" tripod.coarse.off >stdout 2>stderr

@@ -16,10 +16,6 @@ class ExactGeodesic;
 struct Overlay;
 
 struct SplitOptions {
-    /// Check that the result is valid around the split (the default, and what keeps a valid G valid). When false,
-    /// the new geodesics are the shortest ones, whatever they do: for callers that judge the result on all of G
-    /// themselves (untangling an invalid G).
-    bool check_validity = true;
     /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
     geodesic::ExactGeodesic* propagation = nullptr;
     /// When the shortest geodesic from the new vertex leaves the patch that it must run in, try the shortest path
@@ -63,8 +59,9 @@ struct Fork {
     std::size_t common = 0;
 };
 
-/// The forks at a: the maximal runs (two edges or more) of consecutive edges leaving a whose polylines share their
-/// first segment, and that leave a on both sides of the run (so that the run is not the whole fan).
+/// The forks at a: the maximal runs of consecutive edges leaving a whose polylines share their first segment, with
+/// two edges or more, and at least two edges of a's fan outside the run (the new vertex is joined to the ends of
+/// the edges just before and after the run, which must differ).
 std::vector<Fork> find_forks(const GeodesicTriangulation& g, OpenMesh::VertexHandle a);
 
 /// Splits a fork (the inverse of an edge collapse, OpenMesh's vertex_split): a new coarse vertex v at the fork's
