@@ -1,5 +1,6 @@
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
+#include <geotri/collapse.h>
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/overlay.h>
 #include <geotri/split.h>
@@ -266,9 +267,9 @@ bool lowers_violations(const GeodesicTriangulation& trial, ValidationReport& rep
     return true;
 }
 
-/// Untangles by single flips, and where no flip helps by fork splits, while they strictly lower the number of
-/// violations (and do not raise that of conditions 1-3), which bounds their number. `report` is validate(g) on
-/// entry and on exit.
+/// Untangles by single flips, where no flip helps by fork splits, and where neither does by edge collapses, while
+/// they strictly lower the number of violations (and do not raise that of conditions 1-3), which bounds their
+/// number. `report` is validate(g) on entry and on exit.
 void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
               ValidationReport& report) {
     geodesic::ExactGeodesic propagation(g.fine().mesh);
@@ -277,10 +278,20 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     flip_options.propagation = &propagation;
     SplitOptions split_options;
     split_options.propagation = &propagation;
-    // Does `operation` on a copy of G, and keeps the copy when the operation is possible and lowers the count.
+    CollapseOptions collapse_options;
+    collapse_options.check_validity = false;
+    collapse_options.propagation = &propagation;
+    // Does `operation` on a copy of G, and keeps the copy when the operation is possible and lowers the count. An
+    // operation that throws InvalidInput found G unfit for it around there (untangling works on an invalid G): it
+    // counts as refused, and the copy is dropped.
     auto keep_if_better = [&](auto operation, int& kept) {
         GeodesicTriangulation trial = g;
-        if (!operation(trial)) {
+        bool done = false;
+        try {
+            done = operation(trial);
+        } catch (const InvalidInput&) {
+        }
+        if (!done) {
             ++result.untangle_refused;
             return false;
         }
@@ -310,10 +321,24 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         }
         return false;
     };
+    // A collapse removes a coarse vertex whose edges no flip or split could straighten out: its neighbours are
+    // joined to the vertex it merges into by new shortest geodesics.
+    auto try_collapses = [&] {
+        for (int index : candidate_vertices(g.coarse(), report)) {
+            std::vector<HalfedgeHandle> out;
+            for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) out.push_back(h);
+            for (HalfedgeHandle h : out) {
+                auto collapse = [&](GeodesicTriangulation& trial) { return collapse_edge(trial, h, collapse_options).done; };
+                if (keep_if_better(collapse, result.untangle_collapses)) return true;
+            }
+        }
+        return false;
+    };
     int round = 0;
-    while (!report.valid && result.untangle_flips + result.untangle_fork_splits < options.max_untangle_flips) {
+    while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_collapses <
+                                options.max_untangle_operations) {
         ++round;
-        if (!try_flips() && !try_fork_splits()) {
+        if (!try_flips() && !try_fork_splits() && !try_collapses()) {
             result.untangle_stuck = true;
             break;
         }
