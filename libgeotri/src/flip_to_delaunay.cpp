@@ -9,8 +9,10 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -239,6 +241,9 @@ private:
     std::vector<unsigned char> dirty_;  ///< per edge: its faces changed since it was last evaluated
 };
 
+/// Rounds of fork splits in one chain (try_fork_chain in untangle()): chains seen on real meshes take three.
+constexpr int k_max_fork_chain_rounds = 8;
+
 /// Violations of conditions 1-3 (the cheap ones, without the overlay).
 int cheap_count(const ValidationReport& r) { return r.violation_count[0] + r.violation_count[1] + r.violation_count[2]; }
 
@@ -255,90 +260,199 @@ std::vector<int> candidate_vertices(const CoarseMesh& coarse, const ValidationRe
     return {vertices.begin(), vertices.end()};
 }
 
-/// Untangling's judge: `trial` is kept when it strictly lowers the number of violations without raising that of
-/// conditions 1-3 (checked first, without the overlay, which costs more). On success `report` becomes trial's.
-bool lowers_violations(const GeodesicTriangulation& trial, ValidationReport& report) {
+/// Untangling's judge: `trial` is better when it strictly lowers the number of violations without raising that of
+/// conditions 1-3 (checked first, without the overlay, which costs more). Then `after` is trial's report.
+bool lowers_violations(const GeodesicTriangulation& trial, const ValidationReport& report, ValidationReport& after) {
     ValidationOptions cheap;
     cheap.overlay = false;
-    if (cheap_count(validate(trial, cheap)) > cheap_count(report)) return false;
-    ValidationReport after = validate(trial);
-    if (total(after) >= total(report)) return false;
-    report = std::move(after);
-    return true;
+    after = validate(trial, cheap);
+    if (cheap_count(after) > cheap_count(report)) return false;
+    add_overlay_check(trial, after);
+    return total(after) < total(report);
 }
+
+/// One untangling move: `run` does it on a copy of G with the propagation object of its thread, and returns how
+/// many operations it did (0: not possible there). `key` names it by kind and coarse vertices.
+struct Move {
+    std::function<int(GeodesicTriangulation&, geodesic::ExactGeodesic&)> run;
+    std::array<int, 3> key;
+};
+
+/// The kinds of untangling moves, for their keys.
+enum MoveKind : int { k_flip, k_fork_split, k_fork_chain, k_collapse };
+
+/// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
+class Untangler {
+public:
+    Untangler(GeodesicTriangulation& g, ValidationReport& report, const FlipToDelaunayOptions& options,
+              FlipToDelaunayResult& result)
+        : g_(g), report_(report), result_(result) {
+#ifdef _OPENMP
+        threads_ = options.threads > 0 ? options.threads : omp_get_max_threads();
+#else
+        (void)options;
+#endif
+        propagations_.resize(static_cast<std::size_t>(threads_));
+    }
+
+    /// Tries `moves` and keeps the first that is possible and lowers the count: G and report become its, and
+    /// `kept` grows by its operations. Moves that were tried before without success go last, in their order: a
+    /// move that helps is then found sooner, and none is left out. The moves are tried in batches of one per
+    /// thread, in parallel; moves after the kept one in its batch are dropped uncounted, so that G and every count
+    /// are the same for any thread count. A move that throws InvalidInput found G unfit for it around there
+    /// (untangling works on an invalid G): it counts as not possible.
+    bool keep_first_better(std::vector<Move> moves, int& kept) {
+        std::stable_partition(moves.begin(), moves.end(), [&](const Move& m) { return !failed_.count(m.key); });
+        struct Trial {
+            std::optional<GeodesicTriangulation> g;
+            ValidationReport report;
+            int operations = 0;
+            bool better = false;
+            std::exception_ptr error;
+        };
+        for (std::size_t first = 0; first < moves.size(); first += static_cast<std::size_t>(threads_)) {
+            const std::size_t n = std::min(moves.size() - first, static_cast<std::size_t>(threads_));
+            std::vector<Trial> trials(n);
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(threads_) schedule(static, 1)
+#endif
+            for (long i = 0; i < static_cast<long>(n); ++i) {
+                Trial& t = trials[static_cast<std::size_t>(i)];
+                try {
+                    t.g.emplace(g_);
+                    try {
+                        t.operations = moves[first + static_cast<std::size_t>(i)].run(*t.g, propagation());
+                    } catch (const InvalidInput&) {
+                        t.operations = 0;
+                    }
+                    t.better = t.operations > 0 && lowers_violations(*t.g, report_, t.report);
+                } catch (...) {
+                    t.error = std::current_exception();
+                }
+            }
+            for (std::size_t i = 0; i < n; ++i) {
+                Trial& t = trials[i];
+                if (t.error) std::rethrow_exception(t.error);
+                if (t.better) {
+                    g_ = std::move(*t.g);
+                    report_ = std::move(t.report);
+                    kept += t.operations;
+                    // A collapse renumbers the coarse vertices, and with them the keys.
+                    if (moves[first + i].key[0] == k_collapse) failed_.clear();
+                    return true;
+                }
+                ++(t.operations == 0 ? result_.untangle_refused : result_.untangle_rejected);
+                failed_.insert(moves[first + i].key);
+            }
+        }
+        return false;
+    }
+
+private:
+    /// The calling thread's propagation object, made on first use.
+    geodesic::ExactGeodesic& propagation() {
+        std::size_t k = 0;
+#ifdef _OPENMP
+        k = static_cast<std::size_t>(omp_get_thread_num());
+#endif
+        if (!propagations_[k]) propagations_[k] = std::make_unique<geodesic::ExactGeodesic>(g_.fine().mesh);
+        return *propagations_[k];
+    }
+
+    GeodesicTriangulation& g_;
+    ValidationReport& report_;
+    FlipToDelaunayResult& result_;
+    int threads_ = 1;
+    std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread
+    std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
+};
 
 /// Untangles by single flips, where no flip helps by fork splits, and where neither does by edge collapses, while
 /// they strictly lower the number of violations (and do not raise that of conditions 1-3), which bounds their
 /// number. `report` is validate(g) on entry and on exit.
 void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
               ValidationReport& report) {
-    geodesic::ExactGeodesic propagation(g.fine().mesh);
-    FlipOptions flip_options;
-    flip_options.check_validity = false;
-    flip_options.propagation = &propagation;
-    SplitOptions split_options;
-    split_options.propagation = &propagation;
-    CollapseOptions collapse_options;
-    collapse_options.check_validity = false;
-    collapse_options.propagation = &propagation;
-    // Does `operation` on a copy of G, and keeps the copy when the operation is possible and lowers the count. An
-    // operation that throws InvalidInput found G unfit for it around there (untangling works on an invalid G): it
-    // counts as refused, and the copy is dropped.
-    auto keep_if_better = [&](auto operation, int& kept) {
-        GeodesicTriangulation trial = g;
-        bool done = false;
-        try {
-            done = operation(trial);
-        } catch (const InvalidInput&) {
-        }
-        if (!done) {
-            ++result.untangle_refused;
-            return false;
-        }
-        if (!lowers_violations(trial, report)) {
-            ++result.untangle_rejected;
-            return false;
-        }
-        g = std::move(trial);
-        ++kept;
-        return true;
-    };
+    Untangler untangler(g, report, options, result);
     auto try_flips = [&] {
+        std::vector<Move> moves;
         for (int index : candidate_edges(g.coarse(), report)) {
             const EdgeHandle e(index);
             if (g.coarse().is_boundary(e) || !g.coarse().is_flip_ok(e)) continue;
-            auto flip_e = [&](GeodesicTriangulation& trial) { return flip(trial, e, flip_options).accepted(); };
-            if (keep_if_better(flip_e, result.untangle_flips)) return true;
+            const int a = g.coarse().to_vertex_handle(g.coarse().halfedge_handle(e, 0)).idx();
+            const int b = g.coarse().to_vertex_handle(g.coarse().halfedge_handle(e, 1)).idx();
+            auto run = [e](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+                FlipOptions unchecked;
+                unchecked.check_validity = false;
+                unchecked.propagation = &propagation;
+                return flip(trial, e, unchecked).accepted() ? 1 : 0;
+            };
+            moves.push_back({run, {k_flip, std::min(a, b), std::max(a, b)}});
         }
-        return false;
+        return untangler.keep_first_better(moves, result.untangle_flips);
+    };
+    auto split_options = [](geodesic::ExactGeodesic& propagation) {
+        SplitOptions o;
+        o.propagation = &propagation;
+        return o;
     };
     auto try_fork_splits = [&] {
-        for (int index : candidate_vertices(g.coarse(), report)) {
+        std::vector<Move> moves;
+        for (int index : candidate_vertices(g.coarse(), report))
             for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(index))) {
-                auto split = [&](GeodesicTriangulation& trial) { return split_fork(trial, fork, split_options).done; };
-                if (keep_if_better(split, result.untangle_fork_splits)) return true;
+                auto run = [fork, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+                    return split_fork(trial, fork, split_options(propagation)).done ? 1 : 0;
+                };
+                moves.push_back({run, {k_fork_split, index, g.coarse().to_vertex_handle(fork.first).idx()}});
             }
-        }
-        return false;
+        return untangler.keep_first_better(moves, result.untangle_fork_splits);
+    };
+    // Forks come in chains where many geodesics pass through the same saddles of T: a fork split's new edges fork
+    // again at the next vertex, and no single split lowers the count. The chain splits a fork at every vertex that
+    // the violations name, round after round while there are any, and is judged as one move.
+    auto try_fork_chain = [&] {
+        const ValidationReport& start = report;
+        auto chain = [&start, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+            ValidationOptions cheap;
+            cheap.overlay = false;
+            ValidationReport current = start;
+            int splits = 0;
+            for (int round = 0; round < k_max_fork_chain_rounds; ++round) {
+                int done = 0;
+                for (int index : candidate_vertices(trial.coarse(), current)) {
+                    const std::vector<Fork> forks = find_forks(trial, OpenMesh::VertexHandle(index));
+                    if (!forks.empty() && split_fork(trial, forks.front(), split_options(propagation)).done) ++done;
+                }
+                if (done == 0) break;
+                splits += done;
+                current = validate(trial, cheap);
+            }
+            return splits > 1 ? splits : 0;  // one split alone was tried already
+        };
+        // Its key changes with the number of violations, so that it is tried again first once they have changed.
+        return untangler.keep_first_better({{chain, {k_fork_chain, total(report), 0}}}, result.untangle_fork_splits);
     };
     // A collapse removes a coarse vertex whose edges no flip or split could straighten out: its neighbours are
     // joined to the vertex it merges into by new shortest geodesics.
     auto try_collapses = [&] {
-        for (int index : candidate_vertices(g.coarse(), report)) {
-            std::vector<HalfedgeHandle> out;
-            for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) out.push_back(h);
-            for (HalfedgeHandle h : out) {
-                auto collapse = [&](GeodesicTriangulation& trial) { return collapse_edge(trial, h, collapse_options).done; };
-                if (keep_if_better(collapse, result.untangle_collapses)) return true;
+        std::vector<Move> moves;
+        for (int index : candidate_vertices(g.coarse(), report))
+            for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index)))
+            {
+                auto run = [h](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+                    CollapseOptions unchecked;
+                    unchecked.check_validity = false;
+                    unchecked.propagation = &propagation;
+                    return collapse_edge(trial, h, unchecked).done ? 1 : 0;
+                };
+                moves.push_back({run, {k_collapse, index, g.coarse().to_vertex_handle(h).idx()}});
             }
-        }
-        return false;
+        return untangler.keep_first_better(moves, result.untangle_collapses);
     };
     int round = 0;
     while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_collapses <
                                 options.max_untangle_operations) {
         ++round;
-        if (!try_flips() && !try_fork_splits() && !try_collapses()) {
+        if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_collapses()) {
             result.untangle_stuck = true;
             break;
         }

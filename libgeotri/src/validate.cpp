@@ -87,6 +87,8 @@ public:
         : g_(g), mesh_(g.fine().mesh), coarse_(g.coarse()), report_(report) {}
 
     void run(const ValidationOptions& options);
+    /// Adds condition 4 to a report that run() made without the overlay.
+    void add_patches();
 
 private:
     void prepare();
@@ -148,6 +150,11 @@ void Validator::run(const ValidationOptions& options) {
     summarise();
     report_.valid = std::all_of(report_.violation_count.begin(), report_.violation_count.end(),
                                 [](int c) { return c == 0; });
+}
+
+void Validator::add_patches() {
+    check_patches();
+    report_.valid = report_.valid && report_.violation_count[3] == 0;
 }
 
 void Validator::prepare() {
@@ -613,5 +620,10 @@ ValidationReport validate(const GeodesicTriangulation& g, const ValidationOption
 }
 
 ValidationReport validate(const GeodesicTriangulation& g) { return validate(g, ValidationOptions{}); }
+
+void add_overlay_check(const GeodesicTriangulation& g, ValidationReport& report) {
+    if (report.overlay_checked) return;
+    Validator(g, report).add_patches();
+}
 
 }  // namespace geotri

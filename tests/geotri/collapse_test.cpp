@@ -37,7 +37,7 @@ Eigen::Vector3d position_of(const GeodesicTriangulation& g, VertexHandle v) { re
 VertexHandle vertex_at(const GeodesicTriangulation& g, const Eigen::Vector3d& x) {
     for (VertexHandle v : g.coarse().vertices())
         if ((position_of(g, v) - x).norm() < 1e-12) return v;
-    return {};
+    return VertexHandle();
 }
 
 TEST(Collapse, corner_of_the_cube_onto_its_neighbour_gives_the_unfolded_lengths) {
@@ -95,7 +95,7 @@ TEST(Collapse, a_tetrahedron_cannot_lose_a_vertex) {
     // Four alternate corners of the cube: a regular tetrahedron, the coarsest triangulation of a sphere.
     auto fine = test::fine_of(test::cube(4));
     MeshData data;
-    for (const Eigen::Vector3d x : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 0, 1),
+    for (const Eigen::Vector3d& x : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 0, 1),
                                     Eigen::Vector3d(0, 1, 1)})
         data.positions.push_back(fine->mesh.position(test::nearest_vertex(fine->mesh, x)));
     data.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};

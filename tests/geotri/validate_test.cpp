@@ -573,6 +573,27 @@ TEST(Validate, patches_that_do_not_cover_t_are_found) {
     EXPECT_EQ(skipped.violation_count[1], r.violation_count[1]);
 }
 
+// Untangling checks conditions 1-3 first and adds the overlay only when they allow: the report must then be the
+// one that validate() gives, violation for violation.
+TEST(Validate, overlay_check_added_later_gives_the_full_report) {
+    const auto fine = fine_of(test::icosphere(3));
+    for (bool turned_over : {false, true}) {
+        const GeodesicTriangulation g = tetrahedron_on_sphere(fine, turned_over);
+        const ValidationReport full = validate(g);
+        ValidationReport later = validate(g, ValidationOptions{false});
+        add_overlay_check(g, later);
+        EXPECT_TRUE(later.overlay_checked);
+        EXPECT_EQ(later.valid, full.valid);
+        EXPECT_EQ(later.violation_count, full.violation_count);
+        ASSERT_EQ(later.violations.size(), full.violations.size());
+        for (std::size_t k = 0; k < full.violations.size(); ++k) EXPECT_EQ(later.violations[k].what, full.violations[k].what);
+        EXPECT_EQ(later.patch_area, full.patch_area);
+        // A second call adds nothing.
+        add_overlay_check(g, later);
+        EXPECT_EQ(later.violation_count, full.violation_count);
+    }
+}
+
 TEST(Validate, malformed_locations_are_refused) {
     const auto fine = fine_of(test::icosphere(1));
     GeodesicTriangulation g = tetrahedron_on_sphere(fine);

@@ -52,4 +52,8 @@ struct ValidationOptions {
 ValidationReport validate(const GeodesicTriangulation& g, const ValidationOptions& options);
 ValidationReport validate(const GeodesicTriangulation& g);
 
+/// Completes `report`, made by validate() of this same G without the overlay, with condition 4: the same report
+/// as validate(g) then, without checking conditions 1-3 again. Does nothing when the overlay was checked.
+void add_overlay_check(const GeodesicTriangulation& g, ValidationReport& report);
+
 }  // namespace geotri
