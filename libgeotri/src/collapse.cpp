@@ -1,9 +1,9 @@
+#include "retrace.h"
+
 #include <geodesic/errors.h>
-#include <geodesic/exact_geodesic.h>
 #include <geotri/collapse.h>
 #include <geotri/validate.h>
 
-#include <memory>
 #include <optional>
 #include <vector>
 
@@ -51,22 +51,7 @@ CollapseResult collapse_edge(GeodesicTriangulation& g, HalfedgeHandle h, const C
     std::vector<OpenMesh::FaceHandle*> no_faces;
     coarse.garbage_collection(vertex_handles, no_halfedges, no_faces);
 
-    std::unique_ptr<geodesic::ExactGeodesic> own;
-    geodesic::ExactGeodesic* propagation = options.propagation;
-    if (!propagation) {
-        own = std::make_unique<geodesic::ExactGeodesic>(g.fine().mesh);
-        propagation = own.get();
-    }
-    geodesic::PropagationOptions propagation_options;
-    for (VertexHandle u : joined) propagation_options.stop_points.push_back(g.location(u));
-    propagation->propagate({g.location(kept)}, propagation_options);
-    for (VertexHandle u : joined) {
-        Polyline path = propagation->shortest_path(g.location(u));
-        if (path.size() < 2)
-            throw NumericalError("collapse_edge: no geodesic from coarse vertex " + std::to_string(kept.idx()) +
-                                 " to " + std::to_string(u.idx()));
-        g.set_path(coarse.find_halfedge(kept, u), std::move(path));
-    }
+    retrace_edges(g, kept, joined, options.propagation);
     result.retraced = static_cast<int>(joined.size());
 
     if (options.check_validity) {

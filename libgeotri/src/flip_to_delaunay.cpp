@@ -3,6 +3,7 @@
 #include <geotri/collapse.h>
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/overlay.h>
+#include <geotri/relocate.h>
 #include <geotri/split.h>
 
 #include <algorithm>
@@ -241,6 +242,9 @@ private:
     std::vector<unsigned char> dirty_;  ///< per edge: its faces changed since it was last evaluated
 };
 
+/// How far untangling moves a coarse vertex: to the vertices of T within this many edges of it.
+constexpr int k_relocation_rings = 2;
+
 /// Rounds of fork splits in one chain (try_fork_chain in untangle()): chains seen on real meshes take three.
 constexpr int k_max_fork_chain_rounds = 8;
 
@@ -279,7 +283,7 @@ struct Move {
 };
 
 /// The kinds of untangling moves, for their keys.
-enum MoveKind : int { k_flip, k_fork_split, k_fork_chain, k_collapse };
+enum MoveKind : int { k_flip, k_fork_split, k_fork_chain, k_collapse, k_relocate };
 
 /// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
 class Untangler {
@@ -367,8 +371,8 @@ private:
     std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
 };
 
-/// Untangles by single flips, where no flip helps by fork splits, and where neither does by edge collapses, while
-/// they strictly lower the number of violations (and do not raise that of conditions 1-3), which bounds their
+/// Untangles by single flips, where no flip helps by fork splits, then by edge collapses, then by moving vertices,
+/// while they strictly lower the number of violations (and do not raise that of conditions 1-3), which bounds their
 /// number. `report` is validate(g) on entry and on exit.
 void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
               ValidationReport& report) {
@@ -448,11 +452,30 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
             }
         return untangler.keep_first_better(moves, result.untangle_collapses);
     };
+    // A coarse vertex on the wrong side of a thin wall or a small handle has geodesics that wind around it twice,
+    // whatever its edges: moved a little, to a vertex of T nearby, its new geodesics may wind once.
+    auto try_relocations = [&] {
+        std::vector<Move> moves;
+        for (int index : candidate_vertices(g.coarse(), report)) {
+            const OpenMesh::VertexHandle v(index);
+            for (int to : nearby_fine_vertices(g, v, k_relocation_rings)) {
+                auto run = [v, to](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+                    RelocateOptions unchecked;
+                    unchecked.check_validity = false;
+                    unchecked.propagation = &propagation;
+                    return relocate_vertex(trial, v, SurfacePoint::at_vertex(to), unchecked).done ? 1 : 0;
+                };
+                moves.push_back({run, {k_relocate, index, to}});
+            }
+        }
+        return untangler.keep_first_better(moves, result.untangle_relocations);
+    };
     int round = 0;
-    while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_collapses <
+    while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_collapses +
+                                    result.untangle_relocations <
                                 options.max_untangle_operations) {
         ++round;
-        if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_collapses()) {
+        if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_collapses() && !try_relocations()) {
             result.untangle_stuck = true;
             break;
         }

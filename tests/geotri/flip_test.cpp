@@ -341,6 +341,8 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
         "cad/pinion.off",
         // Its smallest bones are tetrahedra whose geodesics wind twice around a vertex: only a collapse mends them.
         "anatomy/footbones.ply",
+        // A coarse vertex on the wrong side of a thin wall: only moving it mends it.
+        "cad/couplingdown.off",
         // Two quads of one sweep wanted the same new edge here once, and the second flip failed.
         "classic/horse.ply"};
     int invalid = 0, made_valid = 0;
@@ -376,7 +378,7 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
                   << (r.valid_before ? "valid" : "invalid") << " -> " << (r.valid_after ? "valid" : "INVALID")
                   << " (" << total(r.violations_before) << " -> " << total(r.violations_after)
                   << " violations), " << r.untangle_flips << " untangle flips + " << r.untangle_fork_splits
-                  << " fork splits + " << r.untangle_collapses << " collapses + " << r.improve_flips << " improve flips, min corner " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg
+                  << " fork splits + " << r.untangle_collapses << " collapses + " << r.untangle_relocations << " moves + " << r.improve_flips << " improve flips, min corner " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg
                   << "°, " << r.seconds << " s\n";
     }
     std::cout << "[ flip     ] " << made_valid << " of " << invalid << " invalid traced G became valid\n";

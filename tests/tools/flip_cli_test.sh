@@ -134,11 +134,12 @@ threads_give_identical_files)
     ;;
 
 still_invalid_exits_three_and_is_written)
-    # The coarsest tripod turned inside out: every patch is on the wrong side, and no flip can mend that.
-    cp "$tripod" in_tripod.off
-    "$tools/geotri-decimate" in_tripod.off -o in_coarse.off --coarsest --quiet || fail "geotri-decimate failed"
-    awk '$1 == 3 && NF == 4 { print 3, $2, $4, $3; next } { print }' in_coarse.off >in_turned.off
-    "$tools/geotri-trace" in_tripod.off in_turned.off -o in_g.gtri --quiet || fail "geotri-trace failed"
+    # A tetrahedron on Bob, who has a handle: no move keeps the coarse topology and makes the patches disks.
+    cp "$data/classic/bob_small.ply" in_bob.ply
+    "$tools/geotri-decimate" in_bob.ply -o in_coarse.off --coarsest --quiet || fail "geotri-decimate failed"
+    awk 'NR == 1 { print; print "4 4 0" } NR == 3 || NR == 6 || NR == 9 || NR == 11 { print }
+         END { print "3 0 1 2"; print "3 0 2 3"; print "3 0 3 1"; print "3 1 3 2" }' in_coarse.off >in_tetrahedron.off
+    "$tools/geotri-trace" in_bob.ply in_tetrahedron.off -o in_g.gtri --quiet || fail "geotri-trace failed"
     run in_g.gtri -o out.gtri
     expect_rc 3
     [ -s out.gtri ] || fail "out.gtri is not written"

@@ -29,7 +29,7 @@ struct FlipToDelaunayOptions {
     /// opposite angles must sum to more than π plus this (criterion length). Radians.
     double margin = 1e-9;
     int max_improve_passes = 100;    ///< sweeps over every edge; improve stops after a sweep without a flip
-    int max_untangle_operations = 10000;  ///< flips, fork splits and collapses; each strictly lowers the violation count, so this is only a guard
+    int max_untangle_operations = 10000;  ///< flips, fork splits, collapses and moves; each strictly lowers the violation count, so this is only a guard
     /// Improve: when the shortest c-d geodesic leaves the two patches, try the shortest path inside them.
     bool region_fallback = true;
     int threads = 0;  ///< for improve's evaluations; 0: as many as OpenMP likes. The result is the same for any count
@@ -54,6 +54,7 @@ struct FlipToDelaunayResult {
     int untangle_flips = 0;      ///< flips that strictly lowered the violation count
     int untangle_fork_splits = 0; ///< fork splits (split_fork()) that strictly lowered it, where no flip did
     int untangle_collapses = 0;  ///< edge collapses (collapse_edge()) that strictly lowered it, where nothing else did
+    int untangle_relocations = 0; ///< vertices moved (relocate_vertex()) that strictly lowered it, where nothing else did
     int untangle_rejected = 0;   ///< flips and splits tried while untangling that did not lower it (G kept as it was)
     int untangle_refused = 0;    ///< not flippable, no c-d geodesic, or a fork that could not be split
     bool untangle_stuck = false; ///< untangling ended with violations left and no operation that lowers their count

@@ -1,0 +1,40 @@
+#pragma once
+// Vertex relocation: a coarse vertex moved to another point of T, with every edge of it retraced as an exact
+// geodesic. It either leaves G valid, or is refused with G unchanged.
+
+#include <geotri/geodesic_triangulation.h>
+
+#include <string>
+#include <vector>
+
+namespace geotri {
+
+namespace geodesic {
+class ExactGeodesic;
+}
+
+struct RelocateOptions {
+    /// Refuse the move, G unchanged, unless G is valid after it (validate() with the overlay). When false, the
+    /// result is kept whatever it is: for untangling, which judges it on all of G itself.
+    bool check_validity = true;
+    /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
+    geodesic::ExactGeodesic* propagation = nullptr;
+};
+
+struct RelocateResult {
+    bool done = false;
+    std::string reason;  ///< one readable line when refused
+};
+
+/// Moves coarse vertex v to p, a point of T, and makes each of v's edges the shortest geodesic from p. Refused
+/// when p is where v or another coarse vertex already is, and, with options.check_validity, when G is not valid
+/// afterwards. Throws InvalidInput when v is not a vertex of G or p is not a point of T.
+RelocateResult relocate_vertex(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const SurfacePoint& p,
+                               const RelocateOptions& options = {});
+
+/// The vertices of T within `rings` edges of v's location (of the fine edge's or face's vertices when it is not at
+/// a vertex), nearest rings first and by index within a ring, without v's location itself and without the
+/// locations of other coarse vertices: where untangling tries to move v.
+std::vector<int> nearby_fine_vertices(const GeodesicTriangulation& g, OpenMesh::VertexHandle v, int rings);
+
+}  // namespace geotri
