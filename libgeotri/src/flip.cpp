@@ -106,6 +106,11 @@ void check_plan(const GeodesicTriangulation& g, FlipPlan& plan) {
     const HalfedgeHandle ad = coarse.next_halfedge_handle(ba), db = coarse.next_halfedge_handle(ad);
     const HalfedgeHandle cb = coarse.opposite_halfedge_handle(bc), da = coarse.opposite_halfedge_handle(ad);
 
+    // Condition 1 as validate() judges it: the path is straight within its tolerance (libgeodesic's crossings can
+    // miss it on needle triangles of T).
+    const std::string bend = detail::straightness_defect(mesh, plan.path);
+    if (!bend.empty()) return refuse(FlipRefusal::no_path, "the new geodesic " + bend);
+
     // Condition 2 at c and d: the new geodesic leaves each strictly inside the old corner there. Counter-clockwise
     // at c: c->a, (c->d), c->b; at d: d->b, (d->c), d->a.
     const std::size_t n = plan.path.size();

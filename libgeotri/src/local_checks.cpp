@@ -7,7 +7,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <map>
+#include <string>
 
 namespace geotri::detail {
 
@@ -125,6 +129,39 @@ double start_direction(const GeodesicTriangulation& g, OpenMesh::HalfedgeHandle 
     const std::size_t n = line.size();
     if (h == coarse.halfedge_handle(e, 0)) return polar_angle(g.fine().mesh, line[0], line[1]);
     return polar_angle(g.fine().mesh, line[n - 1], line[n - 2]);
+}
+
+std::string straightness_defect(const geodesic::Mesh& mesh, const Polyline& path) {
+    // With a bend of β and neighbours at distances a and b, the point is β·ab/(a+b) off the line through them, so
+    // the bend may be reach·(1/a + 1/b).
+    const double reach = k_straight_tolerance * mesh.size();
+    constexpr double pi = 3.14159265358979323846;
+    auto format = [](const char* pattern, double x, double y, double z = 0.0) {
+        char text[160];
+        std::snprintf(text, sizeof text, pattern, x, y, z);
+        return std::string(text);
+    };
+    for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+        const SurfacePoint& p = path[i];
+        const double theta = cone_angle(mesh, p);
+        const double left = ccw_angle(polar_angle(mesh, p, path[i - 1]), polar_angle(mesh, p, path[i + 1]), theta);
+        const double right = theta - left;
+        const double a = (mesh.point(p) - mesh.point(path[i - 1])).norm();
+        const double b = (mesh.point(path[i + 1]) - mesh.point(p)).norm();
+        const double slack = (a > 0.0 && b > 0.0) ? reach * (1.0 / a + 1.0 / b) : std::numeric_limits<double>::infinity();
+        const double bend = std::min(std::abs(left - pi), std::abs(right - pi));
+        if (bend <= slack) continue;
+        if (p.kind == geodesic::PointKind::vertex) {
+            // A saddle: at least π on each side. (Straight on one side is a crossing that rounding put on the vertex.)
+            if (std::min(left, right) >= pi - slack) continue;
+            return "bends at fine vertex " + std::to_string(p.vertex) + " (point " + std::to_string(i) + "): " +
+                   format("angles %.9g° and %.9g° on its sides, cone angle %.9g°", left * 180.0 / pi,
+                          right * 180.0 / pi, theta * 180.0 / pi);
+        }
+        return "is not straight at point " + std::to_string(i) + " (" + geodesic::to_spec(p) + "): " +
+               format("it bends by %.2g rad, %.2g allowed", bend, slack);
+    }
+    return {};
 }
 
 }  // namespace geotri::detail

@@ -29,6 +29,16 @@ struct BoundingPath {
 /// closer than 1e-12 times the local fine edge length meet.
 std::string first_meeting(const geodesic::Mesh& mesh, const Polyline& path, const std::vector<BoundingPath>& around);
 
+/// × size(T): how far off straight a polyline point may lie. libgeodesic snaps a crossing within 1e-12·size of a
+/// vertex onto it; traced paths on the shared meshes are otherwise straight to 5e-17·size.
+constexpr double k_straight_tolerance = 2e-12;
+
+/// Empty when `path` is straight through every interior point (condition 1, as validate() judges it), else one
+/// line saying where it bends: "is not straight at point 3 (...): it bends by 7.1e-10 rad, 6.8e-10 allowed".
+/// A point may lie within k_straight_tolerance·size(T) of the straight line through its neighbours, unfolded on
+/// the side where the angle is π; through a fine vertex, a saddle with at least π on each side is straight too.
+std::string straightness_defect(const geodesic::Mesh& mesh, const Polyline& path);
+
 /// A corner at a point of cone angle `theta`, from direction `from` counter-clockwise to `to`, split by `inner`.
 struct CornerSplit {
     double before = 0.0;  ///< from `from` to `inner`

@@ -78,6 +78,8 @@ std::string check_spoke(const GeodesicTriangulation& g, const Spoke& spoke, cons
     const std::string name = "the geodesic to coarse vertex " + std::to_string(spoke.to.idx());
     const std::size_t n = path.size();
     if (n < 2) return name + " is empty";
+    const std::string bend = detail::straightness_defect(mesh, path);
+    if (!bend.empty()) return name + " " + bend;
     if (spoke.has_wedge &&
         !detail::split_corner(spoke.wedge_from, polar_angle(mesh, path[0], path[1]), spoke.wedge_to, theta).ok)
         return name + " does not leave the new vertex inside the patch";

@@ -4,6 +4,7 @@
 #include <geotri/tangent_angles.h>
 #include <geotri/validate.h>
 
+#include "local_checks.h"
 #include "plane_segments.h"
 
 #include <algorithm>
@@ -26,9 +27,6 @@ using detail::segment_distance;
 namespace {
 
 constexpr double k_pi = 3.14159265358979323846;
-// × size(T): how far off straight a polyline point may lie. libgeodesic snaps a crossing within 1e-12·size of a
-// vertex onto it; traced paths on the shared meshes are otherwise straight to 5e-17·size.
-constexpr double k_straight_tolerance = 2e-12;
 constexpr double k_length_tolerance = 1e-12;    // relative
 constexpr double k_min_corner = 1e-12;          // rad
 constexpr double k_meet_tolerance = 1e-12;      // × the local fine edge length
@@ -227,36 +225,10 @@ void Validator::check_polyline(int e) {
     }
     path_ok_[e] = 1;
 
-    // Straight through every interior point: the point lies within `reach` of the straight line through its
-    // neighbours, unfolded on the side where the angle is π. With a bend of β and neighbours at distances a and b,
-    // the point is β·ab/(a+b) off that line, so the bend may be reach·(1/a + 1/b).
-    const double reach = k_straight_tolerance * mesh_.size();
-    std::vector<Eigen::Vector3d> x(path.size());
-    for (std::size_t i = 0; i < path.size(); ++i) x[i] = mesh_.point(path[i]);
-    for (std::size_t i = 1; i + 1 < path.size(); ++i) {
-        const SurfacePoint& p = path[i];
-        const double theta = cone_angle(mesh_, p);
-        const double in = polar_angle(mesh_, p, path[i - 1]);
-        const double out = polar_angle(mesh_, p, path[i + 1]);
-        const double left = ccw_angle(in, out, theta);
-        const double right = theta - left;
-        const double a = (x[i] - x[i - 1]).norm(), b = (x[i + 1] - x[i]).norm();
-        const double slack = (a > 0.0 && b > 0.0) ? reach * (1.0 / a + 1.0 / b) : std::numeric_limits<double>::infinity();
-        const bool straight = std::abs(left - k_pi) <= slack || std::abs(right - k_pi) <= slack;
-        if (p.kind == PointKind::vertex) {
-            // Through a vertex: at least π on each side (a saddle), or straight on one side (a crossing that
-            // rounding put on the vertex).
-            if (!straight && std::min(left, right) < k_pi - slack) {
-                fail("bends at fine vertex " + std::to_string(p.vertex) + " (point " + std::to_string(i) +
-                     "): angles " + degrees(left) + " and " + degrees(right) + " on its sides, cone angle " +
-                     degrees(theta));
-                return;
-            }
-        } else if (!straight) {
-            fail("is not straight at point " + std::to_string(i) + " (" + geodesic::to_spec(p) + "): angle " +
-                 degrees(left) + " instead of 180°");
-            return;
-        }
+    const std::string bend = detail::straightness_defect(mesh_, path);
+    if (!bend.empty()) {
+        fail(bend);
+        return;
     }
 
     const double length = geodesic::path_length(mesh_, path);

@@ -30,7 +30,8 @@ std::array<double, 3> corner_angles(const GeodesicTriangulation& g, OpenMesh::Fa
 enum class FlipRefusal {
     none,            ///< not refused
     not_flippable,   ///< a boundary edge, c == d, or c and d already joined by an edge (OpenMesh's is_flip_ok)
-    no_path,         ///< libgeodesic found no geodesic from c to d (not on one component)
+    no_path,         ///< libgeodesic found no geodesic from c to d (not on one component), or not one straight
+                     ///< within validate()'s tolerance
     leaves_region,   ///< the c-d geodesic meets another polyline or passes through another coarse vertex
     bad_corner,      ///< a corner that the new geodesic creates at c or d would not be positive, or the geodesic
                      ///< does not leave c (or d) inside the old corner there
