@@ -97,6 +97,10 @@ public:
         new_vertices_ = 0;
         budget_ = options_.max_new_vertices > 0 ? options_.max_new_vertices
                                                 : 4 * static_cast<int>(g_.coarse().n_faces()) + 100;
+        // Raising the minimum angle must never lower it: no split may make a corner below the smallest one now.
+        keep_above_ = std::numeric_limits<double>::infinity();
+        for (FaceHandle f : g_.coarse().faces())
+            for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) keep_above_ = std::min(keep_above_, corner_angle(g_, h));
         std::set<std::array<int, 3>> given_up;
         std::vector<std::array<int, 3>> cached_vertices;
         std::vector<double> cached_min;  // per face: its smallest corner that is not exempt (or infinity)
@@ -205,7 +209,7 @@ private:
 
     /// Splits e at its midpoint (or, when that is refused, at 0.4 or 0.6 of it); false when every one is refused.
     bool split_edge_somewhere(EdgeHandle e, bool region_fallback = true) {
-        const double floor = floor_at(e);
+        const double floor = std::max(floor_at(e), keep_above_);
         for (double fraction : {0.5, 0.4, 0.6}) {
             auto split = [&](GeodesicTriangulation& trial) {
                 return split_edge(trial, e, fraction, split_options(region_fallback));
@@ -269,7 +273,7 @@ private:
             }
             // A curved vertex of T inside the circumcircle goes in first: between curved vertices of T that are
             // not coarse vertices, circumcentres can chase each other down to ever smaller triangles.
-            const double floor = 0.5 * smallest_corner(f);
+            const double floor = std::max(0.5 * smallest_corner(f), keep_above_);
             if (const std::optional<int> cone = curved_vertex_near(centre->point, centre->radius)) {
                 if (insert_in_one_of(around, SurfacePoint::at_vertex(*cone), floor)) return true;
             }
@@ -343,6 +347,7 @@ private:
     FlipToDelaunayOptions flip_options_;
     std::set<int> coarse_at_fine_vertex_;  ///< the vertices of T that coarse vertices sit on
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
+    double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;
 };
 

@@ -133,5 +133,26 @@ TEST(Refine, flipped_vertebra_reaches_25_degrees) {
     check_min_angle(g, 25.0, "lumbar vertebra, 320 faces");
 }
 
+// Where refinement cannot reach the angle (needles and sharp cones of a CAD part), it gives up on some corners, but
+// it never makes the smallest corner smaller than it was: every split that it keeps makes no corner below that.
+TEST(Refine, the_smallest_corner_never_gets_smaller) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    GeodesicTriangulation g = traced(test::shared_mesh("cad/boxpart.obj").path, 320);
+    flip_to_delaunay(g);
+    ASSERT_TRUE(validate(g).valid) << describe(validate(g));
+    const double before = min_corner_deg(g);
+    RefineOptions options;
+    options.min_angle_deg = 25.0;
+    const RefineResult r = refine(g, options);
+    std::cout << "[ refine   ] boxpart: " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg << "°, "
+              << g.coarse().n_faces() << " faces, " << r.small_corners_left << " corners left below 25°\n";
+    EXPECT_TRUE(r.valid_after);
+    EXPECT_GT(r.face_splits + r.edge_splits, 0);
+    EXPECT_GE(min_corner_deg(g), before);
+    expect_valid_with_area(g);
+}
+
 }  // namespace
 }  // namespace geotri
