@@ -4,7 +4,7 @@
 #include <geotri/collapse.h>
 #include <geotri/validate.h>
 
-#include <optional>
+#include <string>
 #include <vector>
 
 namespace geotri {
@@ -41,8 +41,8 @@ CollapseResult collapse_edge(GeodesicTriangulation& g, HalfedgeHandle h, const C
     for (VertexHandle u : coarse.vv_range(v))
         if (u != w && u != left && u != right) joined.push_back(u);
 
-    std::optional<GeodesicTriangulation> before;
-    if (options.check_validity) before = g;
+    // The collapse and the garbage collection come before the new geodesics, so a refusal restores this copy.
+    GeodesicTriangulation before = g;
     coarse.collapse(h);
     VertexHandle kept = w;
     std::vector<VertexHandle*> vertex_handles{&kept};
@@ -51,18 +51,17 @@ CollapseResult collapse_edge(GeodesicTriangulation& g, HalfedgeHandle h, const C
     std::vector<OpenMesh::FaceHandle*> no_faces;
     coarse.garbage_collection(vertex_handles, no_halfedges, no_faces);
 
-    retrace_edges(g, kept, joined, options.propagation);
-    result.retraced = static_cast<int>(joined.size());
-
-    if (options.check_validity) {
+    std::string why = retrace_edges(g, kept, joined, options.propagation);
+    if (why.empty() && options.check_validity) {
         const ValidationReport report = validate(g);
-        if (!report.valid) {
-            g = std::move(*before);
-            result.reason = name + ": the result is not valid (" + report.violations.front().what + ")";
-            result.retraced = 0;
-            return result;
-        }
+        if (!report.valid) why = "the result is not valid (" + report.violations.front().what + ")";
     }
+    if (!why.empty()) {
+        g = std::move(before);
+        result.reason = name + ": " + why;
+        return result;
+    }
+    result.retraced = static_cast<int>(joined.size());
     result.done = true;
     result.kept = kept;
     return result;

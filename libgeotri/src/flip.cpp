@@ -90,8 +90,8 @@ FlipPlan start_plan(const GeodesicTriangulation& g, EdgeHandle e) {
     return plan;
 }
 
-/// Condition 2 at c and d and condition 3 against the quad's four polylines, for plan.path; fills plan.corners or
-/// the refusal.
+/// Condition 1 (straight as validate() judges it), condition 2 at c and d and condition 3 against the quad's four
+/// polylines, for plan.path; fills plan.corners or the refusal.
 void check_plan(const GeodesicTriangulation& g, FlipPlan& plan) {
     const CoarseMesh& coarse = g.coarse();
     const Mesh& mesh = g.fine().mesh;

@@ -98,9 +98,7 @@ public:
         budget_ = options_.max_new_vertices > 0 ? options_.max_new_vertices
                                                 : 4 * static_cast<int>(g_.coarse().n_faces()) + 100;
         // Raising the minimum angle must never lower it: no split may make a corner below the smallest one now.
-        keep_above_ = std::numeric_limits<double>::infinity();
-        for (FaceHandle f : g_.coarse().faces())
-            for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) keep_above_ = std::min(keep_above_, corner_angle(g_, h));
+        keep_above_ = smallest_corner_of(g_);
         std::set<std::array<int, 3>> given_up;
         std::vector<std::array<int, 3>> cached_vertices;
         std::vector<double> cached_min;  // per face: its smallest corner that is not exempt (or infinity)
@@ -177,7 +175,10 @@ private:
         const SplitResult done = split(trial);
         FlipToDelaunayResult flips;
         if (done.done && options_.flip) improve_around(trial, link_edges(trial.coarse(), done.vertex), flip_options_, flips);
-        if (!done.done || smallest_corner_around(trial, done.vertex) < floor) {
+        // The flips after the split can reach beyond the new vertex's faces: the smallest corner of all of G must
+        // stay above keep_above_ too.
+        if (!done.done || smallest_corner_around(trial, done.vertex) < floor ||
+            (keep_above_ > 0.0 && smallest_corner_of(trial) < keep_above_)) {
             ++result_.refused_splits;
             return false;
         }
@@ -186,6 +187,13 @@ private:
         ++new_vertices_;
         result_.flips += flips.improve_flips;
         return true;
+    }
+
+    static double smallest_corner_of(const GeodesicTriangulation& g) {
+        double smallest = std::numeric_limits<double>::infinity();
+        for (FaceHandle f : g.coarse().faces())
+            for (HalfedgeHandle h : halfedges_of(g.coarse(), f)) smallest = std::min(smallest, corner_angle(g, h));
+        return smallest;
     }
 
     static double smallest_corner_around(const GeodesicTriangulation& g, VertexHandle v) {

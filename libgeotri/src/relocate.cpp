@@ -5,7 +5,6 @@
 #include <geotri/validate.h>
 
 #include <algorithm>
-#include <optional>
 #include <set>
 
 namespace geotri {
@@ -26,25 +25,27 @@ RelocateResult relocate_vertex(GeodesicTriangulation& g, VertexHandle v, const S
             return result;
         }
 
-    std::optional<GeodesicTriangulation> before;
-    if (options.check_validity) before = g;
+    GeodesicTriangulation before = g;  // restored when the move is refused
     std::vector<VertexHandle> neighbours;
     for (VertexHandle u : coarse.vv_range(v)) neighbours.push_back(u);
     g.set_location(v, to);
-    retrace_edges(g, v, neighbours, options.propagation);
-    if (options.check_validity) {
+    std::string why = retrace_edges(g, v, neighbours, options.propagation);
+    if (why.empty() && options.check_validity) {
         const ValidationReport report = validate(g);
-        if (!report.valid) {
-            g = std::move(*before);
-            result.reason = name + ": the result is not valid (" + report.violations.front().what + ")";
-            return result;
-        }
+        if (!report.valid) why = "the result is not valid (" + report.violations.front().what + ")";
+    }
+    if (!why.empty()) {
+        g = std::move(before);
+        result.reason = name + ": " + why;
+        return result;
     }
     result.done = true;
     return result;
 }
 
 std::vector<int> nearby_fine_vertices(const GeodesicTriangulation& g, VertexHandle v, int rings) {
+    if (!v.is_valid() || static_cast<std::size_t>(v.idx()) >= g.coarse().n_vertices() || g.coarse().status(v).deleted())
+        throw InvalidInput("nearby_fine_vertices: not a vertex of the coarse mesh");
     const geodesic::Mesh& mesh = g.fine().mesh;
     const SurfacePoint& at = g.location(v);
     std::vector<int> ring;

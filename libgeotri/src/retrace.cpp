@@ -1,6 +1,5 @@
 #include "retrace.h"
 
-#include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
 
 #include <memory>
@@ -8,7 +7,7 @@
 
 namespace geotri {
 
-void retrace_edges(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const std::vector<OpenMesh::VertexHandle>& to,
+std::string retrace_edges(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const std::vector<OpenMesh::VertexHandle>& to,
                    geodesic::ExactGeodesic* propagation) {
     std::unique_ptr<geodesic::ExactGeodesic> own;
     if (!propagation) {
@@ -21,10 +20,10 @@ void retrace_edges(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const std
     for (OpenMesh::VertexHandle u : to) {
         Polyline path = propagation->shortest_path(g.location(u));
         if (path.size() < 2)
-            throw NumericalError("no geodesic from coarse vertex " + std::to_string(v.idx()) + " to " +
-                                 std::to_string(u.idx()));
+            return "no geodesic from coarse vertex " + std::to_string(v.idx()) + " to " + std::to_string(u.idx());
         g.set_path(g.coarse().find_halfedge(v, u), std::move(path));
     }
+    return {};
 }
 
 }  // namespace geotri

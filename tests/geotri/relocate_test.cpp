@@ -102,9 +102,16 @@ TEST(Relocate, nearby_fine_vertices_come_ring_by_ring_without_coarse_vertices) {
     EXPECT_EQ(std::vector<int>(two.begin(), two.begin() + static_cast<long>(one.size())), one);
     EXPECT_EQ(std::set<int>(two.begin(), two.end()).size(), two.size());
     EXPECT_EQ(std::count(two.begin(), two.end(), corner), 0);
-    // Coarse vertices' locations are left out: on a 4 x 4 grid per side, no other corner is within two rings.
+    // Coarse vertices' locations are left out: corner 1 is four fine edges from corner 0 along the cube's edge, and
+    // its fine neighbour at (3/4, 0, 0) is within three rings, so four rings would reach corner 1.
+    const int before_corner_1 = test::nearest_vertex(mesh, Eigen::Vector3d(0.75, 0.0, 0.0));
+    const std::vector<int> three = nearby_fine_vertices(g, VertexHandle(0), 3);
+    EXPECT_EQ(std::count(three.begin(), three.end(), before_corner_1), 1);
+    const std::vector<int> four = nearby_fine_vertices(g, VertexHandle(0), 4);
+    EXPECT_GT(four.size(), three.size());
     for (VertexHandle u : g.coarse().vertices())
-        EXPECT_EQ(std::count(two.begin(), two.end(), g.location(u).vertex), 0);
+        EXPECT_EQ(std::count(four.begin(), four.end(), g.location(u).vertex), 0) << "coarse vertex " << u.idx();
+    EXPECT_THROW(nearby_fine_vertices(g, VertexHandle(8), 1), InvalidInput);
 }
 
 }  // namespace

@@ -335,6 +335,18 @@ TEST(Split, untangling_splits_the_forks_that_no_flip_mends) {
     EXPECT_TRUE(r.valid_after) << describe(validate(g));
     EXPECT_GE(r.untangle_fork_splits, 1);
     expect_valid_with_area(g);
+    // Trials run a batch per thread; the first that helps in order is kept: the same G for any thread count.
+    for (int threads : {1, 3}) {
+        GeodesicTriangulation again = traced_anchor();
+        FlipToDelaunayOptions options;
+        options.threads = threads;
+        const FlipToDelaunayResult same = flip_to_delaunay(again, options);
+        EXPECT_EQ(same.untangle_flips, r.untangle_flips) << threads << " threads";
+        EXPECT_EQ(same.untangle_fork_splits, r.untangle_fork_splits) << threads << " threads";
+        EXPECT_EQ(same.untangle_rejected, r.untangle_rejected) << threads << " threads";
+        ASSERT_EQ(again.coarse().n_edges(), g.coarse().n_edges()) << threads << " threads";
+        for (auto e : g.coarse().edges()) EXPECT_EQ(again.polyline(e), g.polyline(e)) << threads << " threads";
+    }
 }
 
 }  // namespace

@@ -31,8 +31,9 @@ struct CollapseResult {
 /// Collapses the coarse halfedge h = (v, w) onto w: v goes, its edges to vertices other than w and the two
 /// vertices opposite h become edges of w, each retraced as the shortest geodesic from w's location. The coarse
 /// mesh is garbage-collected afterwards, so other handles may change. Refused when the collapse would change the
-/// topology (OpenMesh's link condition) or leave a vertex with fewer than three edges, and, with
-/// options.check_validity, when G is not valid afterwards. Throws InvalidInput when h is not a halfedge of G.
+/// topology (OpenMesh's link condition) or leave a vertex with fewer than three edges, when a new geodesic cannot be
+/// found, and, with options.check_validity, when G is not valid afterwards; refused, G is unchanged. Throws
+/// InvalidInput when h is not a halfedge of G.
 CollapseResult collapse_edge(GeodesicTriangulation& g, OpenMesh::HalfedgeHandle h, const CollapseOptions& options = {});
 
 }  // namespace geotri

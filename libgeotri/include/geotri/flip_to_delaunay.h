@@ -29,10 +29,13 @@ struct FlipToDelaunayOptions {
     /// opposite angles must sum to more than π plus this (criterion length). Radians.
     double margin = 1e-9;
     int max_improve_passes = 100;    ///< sweeps over every edge; improve stops after a sweep without a flip
-    int max_untangle_operations = 10000;  ///< flips, fork splits, collapses and moves; each strictly lowers the violation count, so this is only a guard
+    /// Flips, fork splits, collapses and moves: each strictly lowers the violation count, so this is only a guard.
+    int max_untangle_operations = 10000;
     /// Improve: when the shortest c-d geodesic leaves the two patches, try the shortest path inside them.
     bool region_fallback = true;
-    int threads = 0;  ///< for improve's evaluations; 0: as many as OpenMP likes. The result is the same for any count
+    /// For untangling's trials and improve's evaluations; 0: as many as OpenMP likes. The result is the same for
+    /// any count.
+    int threads = 0;
     /// Called after each untangle round and each improve sweep with a line saying where it is.
     std::function<void(const std::string&)> progress;
 };
@@ -51,12 +54,15 @@ struct FlipToDelaunayResult {
     std::array<int, 4> violations_before{}, violations_after{};  ///< per condition, as validate() counts them
     std::vector<Violation> remaining;  ///< the violations left when G is still invalid
 
-    int untangle_flips = 0;      ///< flips that strictly lowered the violation count
-    int untangle_fork_splits = 0; ///< fork splits (split_fork()) that strictly lowered it, where no flip did
-    int untangle_collapses = 0;  ///< edge collapses (collapse_edge()) that strictly lowered it, where nothing else did
-    int untangle_relocations = 0; ///< vertices moved (relocate_vertex()) that strictly lowered it, where nothing else did
-    int untangle_rejected = 0;   ///< flips and splits tried while untangling that did not lower it (G kept as it was)
-    int untangle_refused = 0;    ///< not flippable, no c-d geodesic, or a fork that could not be split
+    // Untangling's moves that strictly lowered the violation count, by kind (each kind where the ones before it
+    // did not help): flips, fork splits (split_fork(), singly or in chains), edge collapses (collapse_edge()) and
+    // vertex moves (relocate_vertex()).
+    int untangle_flips = 0;
+    int untangle_fork_splits = 0;
+    int untangle_collapses = 0;
+    int untangle_relocations = 0;
+    int untangle_rejected = 0;   ///< moves tried that did not lower it (G kept as it was)
+    int untangle_refused = 0;    ///< moves not possible there (not flippable, no geodesic, a refused split, ...)
     bool untangle_stuck = false; ///< untangling ended with violations left and no operation that lowers their count
 
     int improve_flips = 0;
@@ -74,16 +80,18 @@ struct FlipToDelaunayResult {
     double seconds = 0.0;
 };
 
-/// Untangles G, then improves it (as options say). Untangle: while G is invalid, flip one at a time the edges
-/// involved in violations (named by validate(), or at a vertex or face it names), and where no flip helps split
-/// the forks at the vertices involved (split_fork()), keeping an operation only when it strictly lowers the number
-/// of violations (without raising that of conditions 1-3); it stops when G is valid or no such operation is left. Improve (only on a valid G): sweeps
-/// over the edges, flipping by the criterion with plan_flip()'s local checks, until a sweep makes no
-/// flip or max_improve_passes is reached; it terminates because each flip strictly improves a finite order
-/// (criterion angle: the sorted vector of all corner angles), and it never makes a valid G invalid (a final
-/// validate() with the overlay; if that fails, G goes back to what it was before improving). Deterministic:
-/// improve evaluates edges in parallel but flips in edge index order, so the result is the same for any thread
-/// count; untangle is sequential. Preconditions: every edge traced. Throws InvalidInput for a malformed G.
+/// Untangles G, then improves it (as options say). Untangle: while G is invalid, flip the edges involved in
+/// violations (named by validate(), or at a vertex or face it names); where no flip helps, split the forks at the
+/// vertices involved (split_fork(), singly, then as a chain), collapse them into a neighbour (collapse_edge()), or
+/// move them to a vertex of T nearby (relocate_vertex()); an operation is kept only when it strictly lowers the
+/// number of violations (without raising that of conditions 1-3); it stops when G is valid or no such operation is
+/// left. Trials run in parallel, and the first that helps in a fixed order is kept. Improve (only on a valid G):
+/// sweeps over the edges, flipping by the criterion with plan_flip()'s local checks, until a sweep makes no flip or
+/// max_improve_passes is reached; it terminates because each flip strictly improves a finite order (criterion
+/// angle: the sorted vector of all corner angles), and it never makes a valid G invalid (a final validate() with
+/// the overlay; if that fails, G goes back to what it was before improving). Deterministic: improve evaluates edges
+/// in parallel but flips in edge index order, and untangle keeps the first helpful trial in order, so the result is
+/// the same for any thread count. Preconditions: every edge traced. Throws InvalidInput for a malformed G.
 FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDelaunayOptions& options = {});
 
 /// Improve only, starting from `edges` and going on with the edges that their flips change, on a G that the caller

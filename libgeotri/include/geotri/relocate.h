@@ -26,15 +26,17 @@ struct RelocateResult {
     std::string reason;  ///< one readable line when refused
 };
 
-/// Moves coarse vertex v to p, a point of T, and makes each of v's edges the shortest geodesic from p. Refused
-/// when p is where v or another coarse vertex already is, and, with options.check_validity, when G is not valid
-/// afterwards. Throws InvalidInput when v is not a vertex of G or p is not a point of T.
+/// Moves coarse vertex v to p, a point of T, and makes each of v's edges the shortest geodesic from p. Refused, G
+/// unchanged, when p is where v or another coarse vertex already is, when a geodesic cannot be found, and, with
+/// options.check_validity, when G is not valid afterwards. Throws InvalidInput when v is not a vertex of G or p
+/// is not a point of T.
 RelocateResult relocate_vertex(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const SurfacePoint& p,
                                const RelocateOptions& options = {});
 
 /// The vertices of T within `rings` edges of v's location (of the fine edge's or face's vertices when it is not at
 /// a vertex), nearest rings first and by index within a ring, without v's location itself and without the
-/// locations of other coarse vertices: where untangling tries to move v.
+/// locations of other coarse vertices: where untangling tries to move v. Throws InvalidInput when v is not a
+/// vertex of G.
 std::vector<int> nearby_fine_vertices(const GeodesicTriangulation& g, OpenMesh::VertexHandle v, int rings);
 
 }  // namespace geotri
