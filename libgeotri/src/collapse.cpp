@@ -2,7 +2,6 @@
 
 #include <geodesic/errors.h>
 #include <geotri/collapse.h>
-#include <geotri/validate.h>
 
 #include <string>
 #include <vector>
@@ -51,11 +50,7 @@ CollapseResult collapse_edge(GeodesicTriangulation& g, HalfedgeHandle h, const C
     std::vector<OpenMesh::FaceHandle*> no_faces;
     coarse.garbage_collection(vertex_handles, no_halfedges, no_faces);
 
-    std::string why = retrace_edges(g, kept, joined, options.propagation);
-    if (why.empty() && options.check_validity) {
-        const ValidationReport report = validate(g);
-        if (!report.valid) why = "the result is not valid (" + report.violations.front().what + ")";
-    }
+    const std::string why = retrace_edges(g, kept, joined, options.propagation, options.check_validity);
     if (!why.empty()) {
         g = std::move(before);
         result.reason = name + ": " + why;

@@ -2,20 +2,28 @@
 
 #include <geodesic/errors.h>
 #include <geotri/relocate.h>
-#include <geotri/validate.h>
 
 #include <algorithm>
 #include <set>
+#include <string>
 
 namespace geotri {
 
 using OpenMesh::VertexHandle;
 
+namespace {
+
+void require_vertex(const CoarseMesh& coarse, VertexHandle v, const char* caller) {
+    if (!v.is_valid() || static_cast<std::size_t>(v.idx()) >= coarse.n_vertices() || coarse.status(v).deleted())
+        throw InvalidInput(std::string(caller) + ": not a vertex of the coarse mesh");
+}
+
+}  // namespace
+
 RelocateResult relocate_vertex(GeodesicTriangulation& g, VertexHandle v, const SurfacePoint& p,
                                const RelocateOptions& options) {
     const CoarseMesh& coarse = g.coarse();
-    if (!v.is_valid() || static_cast<std::size_t>(v.idx()) >= coarse.n_vertices() || coarse.status(v).deleted())
-        throw InvalidInput("relocate_vertex: not a vertex of the coarse mesh");
+    require_vertex(coarse, v, "relocate_vertex");
     const SurfacePoint to = g.fine().mesh.canonical(p);
     RelocateResult result;
     const std::string name = "moving coarse vertex " + std::to_string(v.idx());
@@ -29,11 +37,7 @@ RelocateResult relocate_vertex(GeodesicTriangulation& g, VertexHandle v, const S
     std::vector<VertexHandle> neighbours;
     for (VertexHandle u : coarse.vv_range(v)) neighbours.push_back(u);
     g.set_location(v, to);
-    std::string why = retrace_edges(g, v, neighbours, options.propagation);
-    if (why.empty() && options.check_validity) {
-        const ValidationReport report = validate(g);
-        if (!report.valid) why = "the result is not valid (" + report.violations.front().what + ")";
-    }
+    const std::string why = retrace_edges(g, v, neighbours, options.propagation, options.check_validity);
     if (!why.empty()) {
         g = std::move(before);
         result.reason = name + ": " + why;
@@ -44,8 +48,7 @@ RelocateResult relocate_vertex(GeodesicTriangulation& g, VertexHandle v, const S
 }
 
 std::vector<int> nearby_fine_vertices(const GeodesicTriangulation& g, VertexHandle v, int rings) {
-    if (!v.is_valid() || static_cast<std::size_t>(v.idx()) >= g.coarse().n_vertices() || g.coarse().status(v).deleted())
-        throw InvalidInput("nearby_fine_vertices: not a vertex of the coarse mesh");
+    require_vertex(g.coarse(), v, "nearby_fine_vertices");
     const geodesic::Mesh& mesh = g.fine().mesh;
     const SurfacePoint& at = g.location(v);
     std::vector<int> ring;
