@@ -124,17 +124,32 @@ SurfacePoint PatchRegion::to_fine(const SurfacePoint& q) const {
 }
 
 PatchRegion::Path PatchRegion::shortest_path(const SurfacePoint& from, const SurfacePoint& to) const {
-    Path result;
-    const std::optional<SurfacePoint> start = to_region(from), end = to_region(to);
-    if (!start || !end) {
-        result.failure = "an end of the path is not in the region";
-        return result;
-    }
-    geodesic::ExactGeodesic propagation(*mesh_);
+    return shortest_paths(from, {to}).front();
+}
+
+std::vector<PatchRegion::Path> PatchRegion::shortest_paths(const SurfacePoint& from,
+                                                           const std::vector<SurfacePoint>& to) const {
+    std::vector<Path> results(to.size());
+    const std::optional<SurfacePoint> start = to_region(from);
+    std::vector<std::optional<SurfacePoint>> ends;
     geodesic::PropagationOptions options;
-    options.stop_points = {*end};
+    for (std::size_t i = 0; i < to.size(); ++i) {
+        ends.push_back(start ? to_region(to[i]) : std::nullopt);
+        if (ends.back()) options.stop_points.push_back(*ends.back());
+        else results[i].failure = "an end of the path is not in the region";
+    }
+    if (options.stop_points.empty()) return results;
+    geodesic::ExactGeodesic propagation(*mesh_);
     propagation.propagate({*start}, options);
-    const Polyline inside = propagation.shortest_path(*end);
+    for (std::size_t i = 0; i < to.size(); ++i)
+        if (ends[i]) results[i] = path_back(propagation, from, *ends[i], to[i]);
+    return results;
+}
+
+PatchRegion::Path PatchRegion::path_back(const geodesic::ExactGeodesic& propagation, const SurfacePoint& from,
+                                         const SurfacePoint& end, const SurfacePoint& to) const {
+    Path result;
+    const Polyline inside = propagation.shortest_path(end);
     if (inside.size() < 2) {
         result.failure = "there is no path inside the region";
         return result;

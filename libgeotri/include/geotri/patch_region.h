@@ -14,6 +14,10 @@
 
 namespace geotri {
 
+namespace geodesic {
+class ExactGeodesic;
+}
+
 class PatchRegion {
 public:
     /// The union of the patches of `coarse_faces`, from `overlay` = build_overlay(g) of a G whose patches of those
@@ -36,8 +40,13 @@ public:
         bool touches_boundary = false;  ///< the failure is that the path touches the region's boundary
     };
     Path shortest_path(const SurfacePoint& from, const SurfacePoint& to) const;
+    /// shortest_path() from `from` to each of `to`, with one propagation.
+    std::vector<Path> shortest_paths(const SurfacePoint& from, const std::vector<SurfacePoint>& to) const;
 
 private:
+    /// The path from the propagation's source (`from` on T) back from `end` (`to` on T, in the region).
+    Path path_back(const geodesic::ExactGeodesic& propagation, const SurfacePoint& from, const SurfacePoint& end,
+                   const SurfacePoint& to) const;
     /// A point of the region's mesh, back on T.
     SurfacePoint to_fine(const SurfacePoint& q) const;
 

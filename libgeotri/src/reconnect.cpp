@@ -1,0 +1,293 @@
+#include <geodesic/errors.h>
+#include <geotri/flip.h>
+#include <geotri/overlay.h>
+#include <geotri/patch_region.h>
+#include <geotri/reconnect.h>
+#include <geotri/tangent_angles.h>
+#include <geotri/validate.h>
+
+#include "local_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace geotri {
+
+using OpenMesh::EdgeHandle;
+using OpenMesh::FaceHandle;
+using OpenMesh::HalfedgeHandle;
+using OpenMesh::VertexHandle;
+
+namespace {
+
+constexpr double k_none = -std::numeric_limits<double>::infinity();
+
+/// The polygon around a set of coarse faces: its corners counter-clockwise (the faces on the left of its sides),
+/// with side i running from corner i to corner i+1.
+struct Polygon {
+    std::vector<VertexHandle> corners;
+    std::vector<HalfedgeHandle> sides;
+    std::vector<VertexHandle> inside;  ///< the vertices of the faces that are not corners
+};
+
+/// The polygon around `faces`, or why they do not make a disk bounded by one simple polygon.
+std::string find_polygon(const CoarseMesh& coarse, const std::set<FaceHandle>& faces, Polygon& polygon) {
+    std::map<VertexHandle, HalfedgeHandle> side_from;  // boundary halfedge by its start
+    std::set<VertexHandle> vertices;
+    std::set<EdgeHandle> edges;
+    for (FaceHandle f : faces)
+        for (HalfedgeHandle h : coarse.fh_range(f)) {
+            vertices.insert(coarse.from_vertex_handle(h));
+            edges.insert(coarse.edge_handle(h));
+            const FaceHandle other = coarse.opposite_face_handle(h);
+            if (other.is_valid() && faces.count(other)) continue;
+            if (!side_from.emplace(coarse.from_vertex_handle(h), h).second)
+                return "coarse vertex " + std::to_string(coarse.from_vertex_handle(h).idx()) +
+                       " is twice a corner of the polygon";
+        }
+    if (side_from.empty()) return "the faces have no boundary (they are a whole component)";
+    if (static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) + static_cast<long>(faces.size()) != 1)
+        return "the faces do not make a topological disk";
+    HalfedgeHandle h = side_from.begin()->second;  // the corner of lowest index first: deterministic
+    do {
+        polygon.corners.push_back(coarse.from_vertex_handle(h));
+        polygon.sides.push_back(h);
+        const auto next = side_from.find(coarse.to_vertex_handle(h));
+        if (next == side_from.end()) return "the polygon around the faces is not closed";
+        h = next->second;
+    } while (h != polygon.sides.front() && polygon.sides.size() <= side_from.size());
+    if (polygon.sides.size() != side_from.size()) return "the faces are bounded by more than one polygon";
+    for (VertexHandle v : vertices)
+        if (!side_from.count(v)) polygon.inside.push_back(v);
+    return {};
+}
+
+/// A candidate diagonal: its geodesic, and the polar angles of its ends measured from the polygon's sides.
+struct Diagonal {
+    Polyline path;
+    bool usable = false;
+};
+
+class Reconnection {
+public:
+    Reconnection(const GeodesicTriangulation& g, const Polygon& polygon, const std::set<FaceHandle>& faces)
+        : g_(g), polygon_(polygon), faces_(faces), k_(polygon.corners.size()), position_(k_ * k_, k_none),
+          diagonals_(k_ * k_) {}
+
+    /// Fills the angular positions of the sides and of every usable diagonal at each corner. Empty, or why not.
+    std::string measure(const Overlay& overlay) {
+        const geodesic::Mesh& mesh = g_.fine().mesh;
+        const CoarseMesh& coarse = g_.coarse();
+        // At corner i, positions count counter-clockwise from side i (to corner i+1) up to the reversed side i-1
+        // (to corner i-1): the polygon's inner angle there.
+        std::vector<double> from(k_);
+        for (std::size_t i = 0; i < k_; ++i) {
+            const std::size_t before = (i + k_ - 1) % k_;
+            from[i] = detail::start_direction(g_, polygon_.sides[i]);
+            const double to =
+                detail::start_direction(g_, coarse.opposite_halfedge_handle(polygon_.sides[before]));
+            position(i, (i + 1) % k_) = 0.0;
+            position(i, before) = ccw_angle(from[i], to, cone(i));
+        }
+        std::vector<int> patches;
+        for (FaceHandle f : faces_) patches.push_back(f.idx());
+        std::optional<PatchRegion> region;
+        try {
+            region.emplace(g_, overlay, patches);
+        } catch (const InvalidInput& e) {
+            return e.what();
+        }
+        for (std::size_t i = 0; i < k_; ++i) {
+            std::vector<std::size_t> ends;
+            std::vector<SurfacePoint> targets;
+            for (std::size_t j = i + 2; j < k_; ++j) {
+                if (i == 0 && j == k_ - 1) continue;  // a side
+                const HalfedgeHandle existing = coarse.find_halfedge(polygon_.corners[i], polygon_.corners[j]);
+                if (existing.is_valid() && !interior(coarse.edge_handle(existing))) continue;  // would double an edge
+                ends.push_back(j);
+                targets.push_back(g_.location(polygon_.corners[j]));
+            }
+            if (targets.empty()) continue;
+            const std::vector<PatchRegion::Path> paths = region->shortest_paths(g_.location(polygon_.corners[i]), targets);
+            for (std::size_t n = 0; n < ends.size(); ++n) {
+                const std::size_t j = ends[n];
+                const Polyline& path = paths[n].polyline;
+                if (path.size() < 2 || !detail::straightness_defect(mesh, path).empty()) continue;
+                const double at_i = ccw_angle(from[i], polar_angle(mesh, path[0], path[1]), cone(i));
+                const double at_j =
+                    ccw_angle(from[j], polar_angle(mesh, path.back(), path[path.size() - 2]), cone(j));
+                if (!strictly_inside(i, at_i) || !strictly_inside(j, at_j)) continue;
+                position(i, j) = at_i;
+                position(j, i) = at_j;
+                diagonals_[i * k_ + j] = {path, true};
+            }
+        }
+        return {};
+    }
+
+    /// The triangulation that maximises the smallest corner (dynamic programming over the sub-polygons i..j);
+    /// returns that corner, k_none when there is none with every corner above detail::k_min_new_corner.
+    double best_triangulation() {
+        best_.assign(k_ * k_, k_none);
+        apex_.assign(k_ * k_, 0);
+        for (std::size_t i = 0; i + 1 < k_; ++i) best_[i * k_ + i + 1] = std::numeric_limits<double>::infinity();
+        for (std::size_t span = 2; span < k_; ++span)
+            for (std::size_t i = 0; i + span < k_; ++i) {
+                const std::size_t j = i + span;
+                if (!joined(i, j)) continue;
+                for (std::size_t m = i + 1; m < j; ++m) {
+                    const double value =
+                        std::min({best_[i * k_ + m], best_[m * k_ + j], smallest_corner(i, m, j)});
+                    if (value > best_[i * k_ + j]) {
+                        best_[i * k_ + j] = value;
+                        apex_[i * k_ + j] = m;
+                    }
+                }
+            }
+        const double best = best_[k_ - 1];
+        return best > detail::k_min_new_corner ? best : k_none;
+    }
+
+    /// The triangles of the best triangulation as corner indices (i, m, j), each after the two it rests on, so
+    /// that adding them in this order fills the polygon from its sides inwards.
+    std::vector<std::array<std::size_t, 3>> triangles() const {
+        std::vector<std::array<std::size_t, 3>> out;
+        std::function<void(std::size_t, std::size_t)> add = [&](std::size_t i, std::size_t j) {
+            if (j < i + 2) return;
+            const std::size_t m = apex_[i * k_ + j];
+            add(i, m);
+            add(m, j);
+            out.push_back({i, m, j});
+        };
+        add(0, k_ - 1);
+        return out;
+    }
+
+    const Diagonal& diagonal(std::size_t i, std::size_t j) const { return diagonals_[std::min(i, j) * k_ + std::max(i, j)]; }
+    bool is_side(std::size_t i, std::size_t j) const { return j == i + 1 || i == j + 1 || (std::min(i, j) == 0 && std::max(i, j) == k_ - 1); }
+
+private:
+    double cone(std::size_t i) const { return cone_angle(g_.fine().mesh, g_.location(polygon_.corners[i])); }
+    double& position(std::size_t i, std::size_t j) { return position_[i * k_ + j]; }
+    bool strictly_inside(std::size_t i, double at) const {
+        return at > detail::k_min_new_corner && at < position_[i * k_ + (i + k_ - 1) % k_] - detail::k_min_new_corner;
+    }
+    bool interior(EdgeHandle e) const {
+        const CoarseMesh& coarse = g_.coarse();
+        const FaceHandle f0 = coarse.face_handle(coarse.halfedge_handle(e, 0));
+        const FaceHandle f1 = coarse.face_handle(coarse.halfedge_handle(e, 1));
+        return f0.is_valid() && f1.is_valid() && faces_.count(f0) && faces_.count(f1);
+    }
+    bool joined(std::size_t i, std::size_t j) const { return is_side(i, j) || diagonal(i, j).usable; }
+
+    /// The smallest corner of triangle (i, m, j), i < m < j; k_none when an edge of it is not usable.
+    double smallest_corner(std::size_t i, std::size_t m, std::size_t j) const {
+        if (!joined(i, m) || !joined(m, j) || !joined(i, j)) return k_none;
+        // The corner at a between its edges to b and then c (counter-clockwise) is the difference of positions.
+        auto corner = [this](std::size_t a, std::size_t b, std::size_t c) {
+            return position_[a * k_ + c] - position_[a * k_ + b];
+        };
+        return std::min({corner(i, m, j), corner(m, j, i), corner(j, i, m)});
+    }
+
+    const GeodesicTriangulation& g_;
+    const Polygon& polygon_;
+    const std::set<FaceHandle>& faces_;
+    std::size_t k_;
+    std::vector<double> position_;  ///< k×k: polar position at corner i of the edge to corner j; k_none if unusable
+    std::vector<Diagonal> diagonals_;  ///< k×k, at [min·k + max]
+    std::vector<double> best_;
+    std::vector<std::size_t> apex_;
+};
+
+double smallest_corner_of(const GeodesicTriangulation& g, const std::set<FaceHandle>& faces) {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (FaceHandle f : faces)
+        for (double a : corner_angles(g, f)) smallest = std::min(smallest, a);
+    return smallest;
+}
+
+}  // namespace
+
+ReconnectResult reconnect_polygon(GeodesicTriangulation& g, const std::vector<FaceHandle>& face_list,
+                                  const ReconnectOptions& options) {
+    CoarseMesh& coarse = g.coarse();
+    std::set<FaceHandle> faces;
+    for (FaceHandle f : face_list) {
+        if (!f.is_valid() || static_cast<std::size_t>(f.idx()) >= coarse.n_faces() || coarse.status(f).deleted())
+            throw InvalidInput("reconnect_polygon: not a face of the coarse mesh");
+        faces.insert(f);
+    }
+    ReconnectResult result;
+    auto refuse = [&result](const std::string& why) {
+        result.reason = "reconnecting the polygon: " + why;
+        return result;
+    };
+    if (faces.empty()) return refuse("no faces");
+    Polygon polygon;
+    if (const std::string why = find_polygon(coarse, faces, polygon); !why.empty()) return refuse(why);
+    result.corners = static_cast<int>(polygon.corners.size());
+    if (result.corners > options.max_corners)
+        return refuse("it has " + std::to_string(result.corners) + " corners, more than " +
+                      std::to_string(options.max_corners));
+    result.min_corner_before = smallest_corner_of(g, faces);
+
+    Overlay built;
+    if (!options.overlay) built = build_overlay(g);
+    Reconnection reconnection(g, polygon, faces);
+    if (const std::string why = reconnection.measure(options.overlay ? *options.overlay : built); !why.empty())
+        return refuse(why);
+    const double best = reconnection.best_triangulation();
+    if (best == k_none) return refuse("no triangulation of it with geodesic diagonals has positive corners");
+    result.min_corner_after = best;
+    if (options.required_gain >= 0.0 && best <= result.min_corner_before + options.required_gain)
+        return refuse("no triangulation of it raises the smallest corner");
+
+    GeodesicTriangulation before = g;  // restored when refused from here on
+    auto restore = [&](const std::string& why) {
+        g = std::move(before);
+        return refuse(why);
+    };
+    for (FaceHandle f : faces) coarse.delete_face(f, true);  // inside vertices and edges go with their last face
+    for (const std::array<std::size_t, 3>& t : reconnection.triangles()) {
+        const FaceHandle f = coarse.add_face(polygon.corners[t[0]], polygon.corners[t[1]], polygon.corners[t[2]]);
+        if (!f.is_valid()) return restore("the coarse mesh refused a new triangle");
+        for (std::size_t n = 0; n < 3; ++n) {
+            const std::size_t i = t[n], j = t[(n + 1) % 3];
+            if (reconnection.is_side(i, j)) continue;
+            const HalfedgeHandle h = coarse.find_halfedge(polygon.corners[std::min(i, j)], polygon.corners[std::max(i, j)]);
+            if (g.polyline(coarse.edge_handle(h)).empty()) {
+                g.set_path(h, reconnection.diagonal(i, j).path);
+                ++result.diagonals;
+            }
+        }
+    }
+    for (VertexHandle v : polygon.corners)
+        if (coarse.valence(v) < 3)
+            return restore("coarse vertex " + std::to_string(v.idx()) + " would have fewer than three edges");
+    result.removed_vertices = static_cast<int>(polygon.inside.size());
+    coarse.garbage_collection();
+    if (options.check_validity) {
+        const ValidationReport report = validate(g);
+        if (!report.valid) return restore("the result is not valid (" + report.violations.front().what + ")");
+    }
+    result.done = true;
+    return result;
+}
+
+ReconnectResult reconnect_vertex(GeodesicTriangulation& g, VertexHandle v, const ReconnectOptions& options) {
+    const CoarseMesh& coarse = g.coarse();
+    if (!v.is_valid() || static_cast<std::size_t>(v.idx()) >= coarse.n_vertices() || coarse.status(v).deleted())
+        throw InvalidInput("reconnect_vertex: not a vertex of the coarse mesh");
+    std::vector<FaceHandle> faces;
+    for (FaceHandle f : coarse.vf_range(v)) faces.push_back(f);
+    return reconnect_polygon(g, faces, options);
+}
+
+}  // namespace geotri
