@@ -1,4 +1,5 @@
 #include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
 #include <geotri/flip.h>
 #include <geotri/overlay.h>
 #include <geotri/patch_region.h>
@@ -13,6 +14,8 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -80,54 +83,87 @@ public:
         : g_(g), polygon_(polygon), faces_(faces), k_(polygon.corners.size()), position_(k_ * k_, k_none),
           diagonals_(k_ * k_) {}
 
-    /// Fills the angular positions of the sides and of every usable diagonal at each corner. Empty, or why not.
-    std::string measure(const Overlay& overlay) {
-        const geodesic::Mesh& mesh = g_.fine().mesh;
+    /// Fills the angular positions of the sides and of every usable diagonal at each corner. Each diagonal is the
+    /// shortest geodesic on T when that one stays inside the polygon (it leaves and reaches its ends inside the
+    /// polygon's corners and meets no side), else, with `region_fallback`, the shortest path inside the faces'
+    /// patches (built from `overlay`, or from an overlay built here when null). Empty, or why not.
+    std::string measure(geodesic::ExactGeodesic& propagation, bool region_fallback, const Overlay* overlay) {
         const CoarseMesh& coarse = g_.coarse();
         // At corner i, positions count counter-clockwise from side i (to corner i+1) up to the reversed side i-1
         // (to corner i-1): the polygon's inner angle there.
-        std::vector<double> from(k_);
+        from_.resize(k_);
         for (std::size_t i = 0; i < k_; ++i) {
             const std::size_t before = (i + k_ - 1) % k_;
-            from[i] = detail::start_direction(g_, polygon_.sides[i]);
-            const double to =
-                detail::start_direction(g_, coarse.opposite_halfedge_handle(polygon_.sides[before]));
+            from_[i] = detail::start_direction(g_, polygon_.sides[i]);
+            const double to = detail::start_direction(g_, coarse.opposite_halfedge_handle(polygon_.sides[before]));
             position(i, (i + 1) % k_) = 0.0;
-            position(i, before) = ccw_angle(from[i], to, cone(i));
+            position(i, before) = ccw_angle(from_[i], to, cone(i));
         }
-        std::vector<int> patches;
-        for (FaceHandle f : faces_) patches.push_back(f.idx());
-        std::optional<PatchRegion> region;
-        try {
-            region.emplace(g_, overlay, patches);
-        } catch (const InvalidInput& e) {
-            return e.what();
-        }
+        std::vector<std::pair<std::size_t, std::size_t>> outside;  // diagonals whose shortest geodesic leaves
         for (std::size_t i = 0; i < k_; ++i) {
             std::vector<std::size_t> ends;
-            std::vector<SurfacePoint> targets;
+            geodesic::PropagationOptions options;
             for (std::size_t j = i + 2; j < k_; ++j) {
                 if (i == 0 && j == k_ - 1) continue;  // a side
                 const HalfedgeHandle existing = coarse.find_halfedge(polygon_.corners[i], polygon_.corners[j]);
                 if (existing.is_valid() && !interior(coarse.edge_handle(existing))) continue;  // would double an edge
                 ends.push_back(j);
-                targets.push_back(g_.location(polygon_.corners[j]));
+                options.stop_points.push_back(g_.location(polygon_.corners[j]));
             }
-            if (targets.empty()) continue;
-            const std::vector<PatchRegion::Path> paths = region->shortest_paths(g_.location(polygon_.corners[i]), targets);
-            for (std::size_t n = 0; n < ends.size(); ++n) {
-                const std::size_t j = ends[n];
-                const Polyline& path = paths[n].polyline;
-                if (path.size() < 2 || !detail::straightness_defect(mesh, path).empty()) continue;
-                const double at_i = ccw_angle(from[i], polar_angle(mesh, path[0], path[1]), cone(i));
-                const double at_j =
-                    ccw_angle(from[j], polar_angle(mesh, path.back(), path[path.size() - 2]), cone(j));
-                if (!strictly_inside(i, at_i) || !strictly_inside(j, at_j)) continue;
-                position(i, j) = at_i;
-                position(j, i) = at_j;
-                diagonals_[i * k_ + j] = {path, true};
-            }
+            if (ends.empty()) continue;
+            propagation.propagate({g_.location(polygon_.corners[i])}, options);
+            for (std::size_t j : ends)
+                if (!use(i, j, propagation.shortest_path(g_.location(polygon_.corners[j])), true))
+                    outside.emplace_back(i, j);
         }
+        if (outside.empty() || !region_fallback) return {};
+        Overlay built;
+        if (!overlay) built = build_overlay(g_);
+        std::vector<int> patches;
+        for (FaceHandle f : faces_) patches.push_back(f.idx());
+        std::optional<PatchRegion> region;
+        try {
+            region.emplace(g_, overlay ? *overlay : built, patches);
+        } catch (const InvalidInput& e) {
+            return e.what();
+        }
+        for (std::size_t n = 0; n < outside.size();) {  // one propagation per corner
+            const std::size_t i = outside[n].first;
+            std::vector<std::size_t> ends;
+            std::vector<SurfacePoint> targets;
+            for (; n < outside.size() && outside[n].first == i; ++n) {
+                ends.push_back(outside[n].second);
+                targets.push_back(g_.location(polygon_.corners[outside[n].second]));
+            }
+            const std::vector<PatchRegion::Path> paths =
+                region->shortest_paths(g_.location(polygon_.corners[i]), targets);
+            for (std::size_t m = 0; m < ends.size(); ++m) use(i, ends[m], paths[m].polyline, false);
+        }
+        return {};
+    }
+
+    /// Whether the chosen diagonals meet nowhere but at shared ends; empty, or where two of them meet.
+    std::string chosen_diagonals_meet() const {
+        std::vector<std::pair<std::size_t, std::size_t>> chosen;
+        for (const std::array<std::size_t, 3>& t : triangles())
+            for (std::size_t n = 0; n < 3; ++n) {
+                const std::size_t i = std::min(t[n], t[(n + 1) % 3]), j = std::max(t[n], t[(n + 1) % 3]);
+                if (!is_side(i, j) && std::find(chosen.begin(), chosen.end(), std::make_pair(i, j)) == chosen.end())
+                    chosen.emplace_back(i, j);
+            }
+        for (std::size_t x = 0; x < chosen.size(); ++x)
+            for (std::size_t y = x + 1; y < chosen.size(); ++y) {
+                const auto [i, j] = chosen[x];
+                const auto [p, q] = chosen[y];
+                Polyline other = diagonal(p, q).path;  // from p to q
+                int tag = -1;
+                if (p == j || q == j) tag = 1;
+                if (p == i || q == i) tag = 0;
+                if ((tag == 0 && q == i) || (tag == 1 && q == j)) std::reverse(other.begin(), other.end());
+                const std::string meeting =
+                    detail::first_meeting(g_.fine().mesh, diagonal(i, j).path, {{other, tag, "a diagonal"}});
+                if (!meeting.empty()) return meeting;
+            }
         return {};
     }
 
@@ -173,6 +209,34 @@ public:
     bool is_side(std::size_t i, std::size_t j) const { return j == i + 1 || i == j + 1 || (std::min(i, j) == 0 && std::max(i, j) == k_ - 1); }
 
 private:
+    /// Records `path` (from corner i to corner j) as the diagonal i-j when it is straight and leaves and reaches
+    /// its ends strictly inside the polygon's corners, and, when `check_sides`, meets no side of the polygon but at
+    /// its ends (a path inside the patches cannot). Returns whether it did.
+    bool use(std::size_t i, std::size_t j, const Polyline& path, bool check_sides) {
+        const geodesic::Mesh& mesh = g_.fine().mesh;
+        if (path.size() < 2 || !detail::straightness_defect(mesh, path).empty()) return false;
+        const double at_i = ccw_angle(from_[i], polar_angle(mesh, path[0], path[1]), cone(i));
+        const double at_j = ccw_angle(from_[j], polar_angle(mesh, path.back(), path[path.size() - 2]), cone(j));
+        if (!strictly_inside(i, at_i) || !strictly_inside(j, at_j)) return false;
+        if (check_sides) {
+            std::vector<detail::BoundingPath> sides;
+            for (std::size_t s = 0; s < k_; ++s) {
+                const std::size_t t = (s + 1) % k_;
+                Polyline side = g_.path(polygon_.sides[s]);  // from corner s to corner t
+                int tag = -1;
+                if (s == i || t == i) tag = 0;
+                if (s == j || t == j) tag = 1;
+                if ((tag == 0 && t == i) || (tag == 1 && t == j)) std::reverse(side.begin(), side.end());
+                sides.push_back({std::move(side), tag, "a side"});
+            }
+            if (!detail::first_meeting(mesh, path, sides).empty()) return false;
+        }
+        position(i, j) = at_i;
+        position(j, i) = at_j;
+        diagonals_[i * k_ + j] = {path, true};
+        return true;
+    }
+
     double cone(std::size_t i) const { return cone_angle(g_.fine().mesh, g_.location(polygon_.corners[i])); }
     double& position(std::size_t i, std::size_t j) { return position_[i * k_ + j]; }
     bool strictly_inside(std::size_t i, double at) const {
@@ -200,6 +264,7 @@ private:
     const Polygon& polygon_;
     const std::set<FaceHandle>& faces_;
     std::size_t k_;
+    std::vector<double> from_;      ///< per corner: the polar angle of its side to the next corner
     std::vector<double> position_;  ///< k×k: polar position at corner i of the edge to corner j; k_none if unusable
     std::vector<Diagonal> diagonals_;  ///< k×k, at [min·k + max]
     std::vector<double> best_;
@@ -238,16 +303,23 @@ ReconnectResult reconnect_polygon(GeodesicTriangulation& g, const std::vector<Fa
                       std::to_string(options.max_corners));
     result.min_corner_before = smallest_corner_of(g, faces);
 
-    Overlay built;
-    if (!options.overlay) built = build_overlay(g);
+    std::unique_ptr<geodesic::ExactGeodesic> own;
+    geodesic::ExactGeodesic* propagation = options.propagation;
+    if (!propagation) {
+        own = std::make_unique<geodesic::ExactGeodesic>(g.fine().mesh);
+        propagation = own.get();
+    }
     Reconnection reconnection(g, polygon, faces);
-    if (const std::string why = reconnection.measure(options.overlay ? *options.overlay : built); !why.empty())
+    if (const std::string why = reconnection.measure(*propagation, options.region_fallback, options.overlay);
+        !why.empty())
         return refuse(why);
     const double best = reconnection.best_triangulation();
     if (best == k_none) return refuse("no triangulation of it with geodesic diagonals has positive corners");
     result.min_corner_after = best;
     if (options.required_gain >= 0.0 && best <= result.min_corner_before + options.required_gain)
         return refuse("no triangulation of it raises the smallest corner");
+    if (const std::string meeting = reconnection.chosen_diagonals_meet(); !meeting.empty())
+        return refuse("two of its best diagonals meet: " + meeting);
 
     GeodesicTriangulation before = g;  // restored when refused from here on
     auto restore = [&](const std::string& why) {

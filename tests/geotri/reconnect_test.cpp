@@ -249,16 +249,19 @@ TEST(Reconnect, handles_that_are_not_in_g_are_invalid_input) {
     EXPECT_THROW(reconnect_polygon(g, {FaceHandle(12)}), InvalidInput);
 }
 
-/// Reconnects the star of every `stride`-th vertex of g, each on its own copy: each one is either done, with G
-/// valid (and the patch areas summing to T's area) and one vertex fewer, or refused with G unchanged.
+/// Reconnects the star of every `stride`-th vertex of g, each on its own copy, with the local checks only (no
+/// validate() inside): each one is either done, with G valid (and the patch areas summing to T's area) and one
+/// vertex fewer, or refused with G unchanged.
 void check_every_vertex_removal(const GeodesicTriangulation& g, const std::string& name, int stride) {
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
+    ReconnectOptions local;
+    local.check_validity = false;
     int done = 0, tried = 0;
     for (VertexHandle v : g.coarse().vertices()) {
         if (v.idx() % stride != 0) continue;
         ++tried;
         GeodesicTriangulation copy = g;
-        const ReconnectResult r = reconnect_vertex(copy, v);
+        const ReconnectResult r = reconnect_vertex(copy, v, local);
         if (!r.done) {
             EXPECT_FALSE(r.reason.empty());
             EXPECT_EQ(copy.coarse().n_faces(), g.coarse().n_faces()) << r.reason;
@@ -276,14 +279,51 @@ void check_every_vertex_removal(const GeodesicTriangulation& g, const std::strin
     EXPECT_GT(done, tried / 2);
 }
 
-TEST(Reconnect, every_vertex_removal_of_a_traced_bundled_mesh_leaves_g_valid_or_is_refused) {
+/// Reconnects, on its own copy of g, the polygon of every `stride`-th face and its three neighbours, asking for a
+/// higher smallest corner, with the local checks only: each one is either done, with G valid and the smallest
+/// corner of the polygon higher, or refused with G unchanged.
+void check_every_face_polygon(const GeodesicTriangulation& g, const std::string& name, int stride) {
+    ASSERT_TRUE(validate(g).valid) << describe(validate(g));
+    ReconnectOptions options;
+    options.check_validity = false;
+    options.required_gain = 1e-9;
+    int done = 0, tried = 0;
+    double gain = 0.0;
+    for (FaceHandle f : g.coarse().faces()) {
+        if (f.idx() % stride != 0) continue;
+        ++tried;
+        std::vector<FaceHandle> faces{f};
+        for (FaceHandle n : g.coarse().ff_range(f)) faces.push_back(n);
+        GeodesicTriangulation copy = g;
+        const ReconnectResult r = reconnect_polygon(copy, faces, options);
+        if (!r.done) {
+            EXPECT_EQ(copy.coarse().n_faces(), g.coarse().n_faces()) << r.reason;
+            for (auto e : copy.coarse().edges()) EXPECT_EQ(copy.polyline(e), g.polyline(e));
+            continue;
+        }
+        ++done;
+        SCOPED_TRACE(name + ", face " + std::to_string(f.idx()));
+        // A vertex of valence three at a corner of the face is inside the polygon, and goes.
+        EXPECT_EQ(copy.coarse().n_faces(), g.coarse().n_faces() - 2 * static_cast<std::size_t>(r.removed_vertices));
+        EXPECT_GT(r.min_corner_after, r.min_corner_before);
+        gain = std::max(gain, r.min_corner_after - r.min_corner_before);
+        expect_valid_with_area(copy);
+    }
+    std::cout << "[ reconnect ] " << name << ": " << done << " of " << tried
+              << " face polygons reconnected to a higher smallest corner (largest gain " << gain * 180 / k_pi
+              << " deg)\n";
+    EXPECT_GT(done, 0);
+}
+
+TEST(Reconnect, reconnections_of_a_traced_bundled_mesh_leave_g_valid_or_are_refused) {
     auto fine = std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
     GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 100));
     trace(g);
     check_every_vertex_removal(g, "bob_small", 1);
+    check_every_face_polygon(g, "bob_small", 1);
 }
 
-TEST(Reconnect, vertex_removals_of_a_flipped_vertebra_leave_g_valid_or_are_refused) {
+TEST(Reconnect, reconnections_of_a_flipped_vertebra_leave_g_valid_or_are_refused) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh reconnection test needs them";
@@ -293,6 +333,7 @@ TEST(Reconnect, vertex_removals_of_a_flipped_vertebra_leave_g_valid_or_are_refus
     trace(g);
     flip_to_delaunay(g);
     check_every_vertex_removal(g, "lumbar vertebra", 5);  // every fifth: each check builds the overlay
+    check_every_face_polygon(g, "lumbar vertebra", 5);
 }
 
 }  // namespace

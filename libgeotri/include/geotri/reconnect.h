@@ -11,19 +11,26 @@
 
 namespace geotri {
 
+namespace geodesic {
+class ExactGeodesic;
+}
 struct Overlay;
 
 struct ReconnectOptions {
-    /// Refuse, G unchanged, unless G is valid afterwards (validate() with the overlay). When false, the result is
-    /// kept whatever it is: for untangling, which judges it on all of G itself.
+    /// Refuse, G unchanged, unless all of G is valid afterwards (validate() with the overlay, which costs a few
+    /// passes over T). When false, the local checks below are all: for a valid G they keep it valid.
     bool check_validity = true;
     /// Refuse unless the smallest corner of the new faces exceeds that of the old ones by more than this (radians);
     /// negative: no such condition. What improvement asks for; removing a vertex does not need it.
     double required_gain = -1.0;
     /// Polygons with more corners than this are refused (the dynamic programming is cubic, the diagonals quadratic).
     int max_corners = 12;
-    /// build_overlay() of this same G (the diagonals are shortest paths inside the polygon's patches); built when
-    /// null.
+    /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
+    geodesic::ExactGeodesic* propagation = nullptr;
+    /// When the shortest geodesic between two corners leaves the polygon, try the shortest path inside the faces'
+    /// patches, which needs the overlay.
+    bool region_fallback = true;
+    /// The overlay of this same G for the fallback; built when needed if null.
     const Overlay* overlay = nullptr;
 };
 
@@ -39,14 +46,18 @@ struct ReconnectResult {
 
 /// Takes out `faces` (coarse faces forming a topological disk whose boundary is one simple polygon of coarse
 /// edges), and the coarse vertices inside, and triangulates the polygon with the diagonals that maximise the
-/// smallest corner angle. Each diagonal is the shortest path between its two corners inside the union of the
-/// faces' patches, kept only when it touches that region's boundary nowhere but at its ends (it is then straight
-/// everywhere: a geodesic of T) and leaves both ends strictly inside the polygon's corners; a diagonal whose ends
-/// are already joined by an edge outside the polygon is not used. The coarse mesh is garbage-collected afterwards
+/// smallest corner angle. Each diagonal is the shortest geodesic between its two corners when that one leaves and
+/// reaches them strictly inside the polygon's corners and meets none of its sides; else (with
+/// options.region_fallback) the shortest path between them inside the union of the faces' patches, kept only when
+/// it touches that region's boundary nowhere but at its ends (it is then straight everywhere: a geodesic of T) and
+/// leaves both ends strictly inside the polygon's corners. A diagonal whose ends are already joined by an edge
+/// outside the polygon is not used. For a valid G, these checks, with one that the chosen diagonals do not meet,
+/// keep G valid: each diagonal runs inside the polygon, a disk. The coarse mesh is garbage-collected afterwards
 /// when vertices were removed, so other handles may change. Refused, G unchanged, when the faces are not such a
 /// disk, the polygon has more than options.max_corners corners, a corner of the polygon is not a vertex of its own
 /// (it appears twice), no triangulation with positive corners exists, a vertex would be left with fewer than three
-/// edges, the gain is below options.required_gain, or (with options.check_validity) G is not valid afterwards.
+/// edges, the gain is below options.required_gain, two chosen diagonals meet, or (with options.check_validity) G
+/// is not valid afterwards.
 /// Preconditions: G's patches of `faces` are disks (always so in a valid G). Throws InvalidInput when a face is not
 /// a face of G.
 ReconnectResult reconnect_polygon(GeodesicTriangulation& g, const std::vector<OpenMesh::FaceHandle>& faces,
