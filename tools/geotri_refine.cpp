@@ -52,12 +52,17 @@ int run(tools::Tool& tool) {
                    "corners at points of T whose cone angle is below three times it are exempt")
         ->check(CLI::Range(0.0, 35.0));
     app.add_flag("--no-flip", no_flip, "Do not flip towards geodesic Delaunay around new vertices");
+    bool keep_vertices = false;
+    app.add_flag("--keep-vertices", keep_vertices,
+                 "Never take out a vertex of the input G (by default --min-angle may take out one at the end of a\n"
+                 "short edge, reconnecting its star, when every corner around it is then at least the angle)");
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
         ->check(CLI::ExistingFile);
     tool.parse();
     if (options.max_length == 0.0 && options.target_faces == 0 && options.min_angle_deg == 0.0)
         throw CLI::ValidationError("give at least one of --max-length, --faces and --min-angle");
     options.flip = !no_flip;
+    options.remove_vertices = !keep_vertices;
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + input);
@@ -93,6 +98,7 @@ int run(tools::Tool& tool) {
         summary.add("edge_splits", r.edge_splits);
         summary.add("face_splits", r.face_splits);
         summary.add("refused_splits", r.refused_splits);
+        summary.add("removed_vertices", r.removed_vertices);
         summary.add("flips", r.flips);
         summary.add("exempt_corners", r.exempt_corners);
         summary.add("small_corners_left", r.small_corners_left);
@@ -107,9 +113,11 @@ int run(tools::Tool& tool) {
     }
     if (tool.verbose()) {
         const char* program = tool.program().c_str();
-        std::fprintf(stderr, "%s: %zu -> %zu faces: %d edge splits, %d circumcentres, %d flips, %d splits refused%s\n",
-                     program, faces_before, g.coarse().n_faces(), r.edge_splits, r.face_splits, r.flips,
-                     r.refused_splits, r.vertex_cap_reached ? "; stopped at the vertex cap" : "");
+        std::fprintf(stderr,
+                     "%s: %zu -> %zu faces: %d edge splits, %d circumcentres, %d vertices taken out, %d flips, %d "
+                     "splits refused%s\n",
+                     program, faces_before, g.coarse().n_faces(), r.edge_splits, r.face_splits, r.removed_vertices,
+                     r.flips, r.refused_splits, r.vertex_cap_reached ? "; stopped at the vertex cap" : "");
         std::fprintf(stderr, "%s: corner angles: min %.4g -> %.4g, mean %.4g -> %.4g degrees; longest edge %.6g\n",
                      program, r.angles_before.min_deg, r.angles_after.min_deg, r.angles_before.mean_deg,
                      r.angles_after.mean_deg, r.longest_edge);

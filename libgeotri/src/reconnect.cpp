@@ -10,6 +10,7 @@
 #include "local_checks.h"
 
 #include <algorithm>
+#include <exception>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -19,6 +20,10 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace geotri {
 
@@ -87,7 +92,8 @@ public:
     /// shortest geodesic on T when that one stays inside the polygon (it leaves and reaches its ends inside the
     /// polygon's corners and meets no side), else, with `region_fallback`, the shortest path inside the faces'
     /// patches (built from `overlay`, or from an overlay built here when null). Empty, or why not.
-    std::string measure(geodesic::ExactGeodesic& propagation, bool region_fallback, const Overlay* overlay) {
+    std::string measure(geodesic::ExactGeodesic& propagation, int threads, bool region_fallback,
+                        const Overlay* overlay) {
         const CoarseMesh& coarse = g_.coarse();
         // At corner i, positions count counter-clockwise from side i (to corner i+1) up to the reversed side i-1
         // (to corner i-1): the polygon's inner angle there.
@@ -99,23 +105,40 @@ public:
             position(i, (i + 1) % k_) = 0.0;
             position(i, before) = ccw_angle(from_[i], to, cone(i));
         }
-        std::vector<std::pair<std::size_t, std::size_t>> outside;  // diagonals whose shortest geodesic leaves
-        for (std::size_t i = 0; i < k_; ++i) {
-            std::vector<std::size_t> ends;
-            geodesic::PropagationOptions options;
-            for (std::size_t j = i + 2; j < k_; ++j) {
-                if (i == 0 && j == k_ - 1) continue;  // a side
-                const HalfedgeHandle existing = coarse.find_halfedge(polygon_.corners[i], polygon_.corners[j]);
-                if (existing.is_valid() && !interior(coarse.edge_handle(existing))) continue;  // would double an edge
-                ends.push_back(j);
-                options.stop_points.push_back(g_.location(polygon_.corners[j]));
+        // One propagation per corner, to the corners after it, in parallel: each writes only its own diagonals.
+        std::vector<std::vector<std::size_t>> leaving(k_);  // per corner: the ends of its diagonals that leave
+        std::vector<std::exception_ptr> errors(k_);
+        const long count = static_cast<long>(k_);
+        int team = 1;
+#ifdef _OPENMP
+        team = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel num_threads(team) if (team > 1)
+#endif
+        {
+            std::unique_ptr<geodesic::ExactGeodesic> own;  // per thread, but for a single thread
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 1)
+#endif
+            for (long n = 0; n < count; ++n) {
+                const std::size_t i = static_cast<std::size_t>(n);
+                try {
+                    geodesic::ExactGeodesic* mine = &propagation;
+                    if (team > 1) {
+                        if (!own) own = std::make_unique<geodesic::ExactGeodesic>(g_.fine().mesh);
+                        mine = own.get();
+                    }
+                    leaving[i] = measure_from(i, *mine);
+                } catch (...) {
+                    errors[i] = std::current_exception();
+                }
             }
-            if (ends.empty()) continue;
-            propagation.propagate({g_.location(polygon_.corners[i])}, options);
-            for (std::size_t j : ends)
-                if (!use(i, j, propagation.shortest_path(g_.location(polygon_.corners[j])), true))
-                    outside.emplace_back(i, j);
         }
+        for (const std::exception_ptr& e : errors)
+            if (e) std::rethrow_exception(e);
+        std::vector<std::pair<std::size_t, std::size_t>> outside;  // diagonals whose shortest geodesic leaves
+        for (std::size_t i = 0; i < k_; ++i)
+            for (std::size_t j : leaving[i]) outside.emplace_back(i, j);
+        (void)threads;
         if (outside.empty() || !region_fallback) return {};
         Overlay built;
         if (!overlay) built = build_overlay(g_);
@@ -140,6 +163,26 @@ public:
             for (std::size_t m = 0; m < ends.size(); ++m) use(i, ends[m], paths[m].polyline, false);
         }
         return {};
+    }
+
+    /// The shortest geodesics from corner i to the corners after it that a diagonal may join; returns the ends of
+    /// those that leave the polygon.
+    std::vector<std::size_t> measure_from(std::size_t i, geodesic::ExactGeodesic& propagation) {
+        const CoarseMesh& coarse = g_.coarse();
+        std::vector<std::size_t> ends, leaving;
+        geodesic::PropagationOptions options;
+        for (std::size_t j = i + 2; j < k_; ++j) {
+            if (i == 0 && j == k_ - 1) continue;  // a side
+            const HalfedgeHandle existing = coarse.find_halfedge(polygon_.corners[i], polygon_.corners[j]);
+            if (existing.is_valid() && !interior(coarse.edge_handle(existing))) continue;  // would double an edge
+            ends.push_back(j);
+            options.stop_points.push_back(g_.location(polygon_.corners[j]));
+        }
+        if (ends.empty()) return leaving;
+        propagation.propagate({g_.location(polygon_.corners[i])}, options);
+        for (std::size_t j : ends)
+            if (!use(i, j, propagation.shortest_path(g_.location(polygon_.corners[j])), true)) leaving.push_back(j);
+        return leaving;
     }
 
     /// Whether the chosen diagonals meet nowhere but at shared ends; empty, or where two of them meet.
@@ -310,7 +353,7 @@ ReconnectResult reconnect_polygon(GeodesicTriangulation& g, const std::vector<Fa
         propagation = own.get();
     }
     Reconnection reconnection(g, polygon, faces);
-    if (const std::string why = reconnection.measure(*propagation, options.region_fallback, options.overlay);
+    if (const std::string why = reconnection.measure(*propagation, options.threads, options.region_fallback, options.overlay);
         !why.empty())
         return refuse(why);
     const double best = reconnection.best_triangulation();
@@ -324,6 +367,7 @@ ReconnectResult reconnect_polygon(GeodesicTriangulation& g, const std::vector<Fa
     GeodesicTriangulation before = g;  // restored when refused from here on
     auto restore = [&](const std::string& why) {
         g = std::move(before);
+        result.corners_after.clear();
         return refuse(why);
     };
     for (FaceHandle f : faces) coarse.delete_face(f, true);  // inside vertices and edges go with their last face
@@ -344,7 +388,12 @@ ReconnectResult reconnect_polygon(GeodesicTriangulation& g, const std::vector<Fa
         if (coarse.valence(v) < 3)
             return restore("coarse vertex " + std::to_string(v.idx()) + " would have fewer than three edges");
     result.removed_vertices = static_cast<int>(polygon.inside.size());
-    coarse.garbage_collection();
+    result.corners_after = polygon.corners;
+    std::vector<VertexHandle*> vertex_handles;
+    for (VertexHandle& v : result.corners_after) vertex_handles.push_back(&v);
+    std::vector<HalfedgeHandle*> no_halfedges;
+    std::vector<FaceHandle*> no_faces;
+    coarse.garbage_collection(vertex_handles, no_halfedges, no_faces);
     if (options.check_validity) {
         const ValidationReport report = validate(g);
         if (!report.valid) return restore("the result is not valid (" + report.violations.front().what + ")");

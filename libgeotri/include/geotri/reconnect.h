@@ -27,6 +27,9 @@ struct ReconnectOptions {
     int max_corners = 12;
     /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
     geodesic::ExactGeodesic* propagation = nullptr;
+    /// Threads for the diagonals' propagations (one per corner); 0: as many as OpenMP likes. With more than one,
+    /// each thread makes its own propagation object. The result is the same for any count.
+    int threads = 0;
     /// When the shortest geodesic between two corners leaves the polygon, try the shortest path inside the faces'
     /// patches, which needs the overlay.
     bool region_fallback = true;
@@ -42,6 +45,8 @@ struct ReconnectResult {
     int diagonals = 0;                ///< geodesics of the new triangulation that are not sides of the polygon
     double min_corner_before = 0.0;   ///< the smallest corner of the old faces, radians
     double min_corner_after = 0.0;    ///< and of the new ones (when a triangulation was found)
+    /// When done: the polygon's corners counter-clockwise, as handles after the coarse mesh's garbage collection.
+    std::vector<OpenMesh::VertexHandle> corners_after;
 };
 
 /// Takes out `faces` (coarse faces forming a topological disk whose boundary is one simple polygon of coarse
