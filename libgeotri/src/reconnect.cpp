@@ -60,6 +60,16 @@ std::string find_polygon(const CoarseMesh& coarse, const std::set<FaceHandle>& f
                        " is twice a corner of the polygon";
         }
     if (side_from.empty()) return "the faces have no boundary (they are a whole component)";
+    // Connected through their edges (a closed component of genus one beside a disk would pass the test below).
+    std::set<FaceHandle> reached{*faces.begin()};
+    std::vector<FaceHandle> stack{*faces.begin()};
+    while (!stack.empty()) {
+        const FaceHandle f = stack.back();
+        stack.pop_back();
+        for (FaceHandle n : coarse.ff_range(f))
+            if (faces.count(n) && reached.insert(n).second) stack.push_back(n);
+    }
+    if (reached.size() != faces.size()) return "the faces are not connected through their edges";
     if (static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) + static_cast<long>(faces.size()) != 1)
         return "the faces do not make a topological disk";
     HalfedgeHandle h = side_from.begin()->second;  // the corner of lowest index first: deterministic
@@ -76,7 +86,7 @@ std::string find_polygon(const CoarseMesh& coarse, const std::set<FaceHandle>& f
     return {};
 }
 
-/// A candidate diagonal: its geodesic, and the polar angles of its ends measured from the polygon's sides.
+/// A candidate diagonal: its geodesic, when usable.
 struct Diagonal {
     Polyline path;
     bool usable = false;

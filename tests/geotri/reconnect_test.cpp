@@ -210,6 +210,7 @@ TEST(Reconnect, faces_that_are_not_one_disk_are_refused) {
     EXPECT_FALSE(touching.reason.empty());
     const ReconnectResult apart = reconnect_polygon(g, {face_with(g, {0, 3, 1}), face_with(g, {4, 7, 6})});
     EXPECT_FALSE(apart.done);
+    EXPECT_NE(apart.reason.find("not connected"), std::string::npos) << apart.reason;
     EXPECT_FALSE(apart.reason.empty());
     std::vector<FaceHandle> all(g.coarse().faces().begin(), g.coarse().faces().end());
     const ReconnectResult whole = reconnect_polygon(g, all);
