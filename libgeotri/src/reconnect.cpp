@@ -122,10 +122,14 @@ public:
         int team = 1;
 #ifdef _OPENMP
         team = threads > 0 ? threads : omp_get_max_threads();
+#else
+        (void)threads;
+#endif
+#ifdef _OPENMP
 #pragma omp parallel num_threads(team) if (team > 1)
 #endif
         {
-            std::unique_ptr<geodesic::ExactGeodesic> own;  // per thread, but for a single thread
+            std::unique_ptr<geodesic::ExactGeodesic> own;  // this thread's; one thread alone uses `propagation`
 #ifdef _OPENMP
 #pragma omp for schedule(dynamic, 1)
 #endif
@@ -148,7 +152,6 @@ public:
         std::vector<std::pair<std::size_t, std::size_t>> outside;  // diagonals whose shortest geodesic leaves
         for (std::size_t i = 0; i < k_; ++i)
             for (std::size_t j : leaving[i]) outside.emplace_back(i, j);
-        (void)threads;
         if (outside.empty() || !region_fallback) return {};
         Overlay built;
         if (!overlay) built = build_overlay(g_);
