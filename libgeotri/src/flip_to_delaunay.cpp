@@ -6,6 +6,8 @@
 #include <geotri/relocate.h>
 #include <geotri/split.h>
 
+#include "parallel_propagations.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -148,33 +150,9 @@ public:
     }
 
 private:
-    /// Calls work(k, propagation) for k in [0, n), in parallel, with one propagation object per thread; rethrows
-    /// the first exception (in k order) after the loop.
     template <class Work>
     void for_each_parallel(std::size_t n, Work work) const {
-        std::vector<std::exception_ptr> errors(n);
-        const long count = static_cast<long>(n);
-#ifdef _OPENMP
-        const int threads = options_.threads > 0 ? options_.threads : omp_get_max_threads();
-#pragma omp parallel num_threads(threads)
-#endif
-        {
-            std::unique_ptr<geodesic::ExactGeodesic> propagation;  // one per thread, reused across edges
-#ifdef _OPENMP
-#pragma omp for schedule(dynamic, 1)
-#endif
-            for (long i = 0; i < count; ++i) {
-                const std::size_t k = static_cast<std::size_t>(i);
-                try {
-                    if (!propagation) propagation = std::make_unique<geodesic::ExactGeodesic>(g_.fine().mesh);
-                    work(k, *propagation);
-                } catch (...) {
-                    errors[k] = std::current_exception();
-                }
-            }
-        }
-        for (const std::exception_ptr& e : errors)
-            if (e) std::rethrow_exception(e);
+        detail::for_each_with_propagation(g_.fine().mesh, n, options_.threads, work);
     }
 
     /// e and the four other edges of its two faces: the edges whose faces a flip of e changes.

@@ -8,9 +8,10 @@
 #include <geotri/validate.h>
 
 #include "local_checks.h"
+#include "parallel_propagations.h"
+#include "polygon_triangulation.h"
 
 #include <algorithm>
-#include <exception>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -20,10 +21,6 @@
 #include <set>
 #include <string>
 #include <vector>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace geotri {
 
@@ -117,38 +114,9 @@ public:
         }
         // One propagation per corner, to the corners after it, in parallel: each writes only its own diagonals.
         std::vector<std::vector<std::size_t>> leaving(k_);  // per corner: the ends of its diagonals that leave
-        std::vector<std::exception_ptr> errors(k_);
-        const long count = static_cast<long>(k_);
-        int team = 1;
-#ifdef _OPENMP
-        team = threads > 0 ? threads : omp_get_max_threads();
-#else
-        (void)threads;
-#endif
-#ifdef _OPENMP
-#pragma omp parallel num_threads(team) if (team > 1)
-#endif
-        {
-            std::unique_ptr<geodesic::ExactGeodesic> own;  // this thread's; one thread alone uses `propagation`
-#ifdef _OPENMP
-#pragma omp for schedule(dynamic, 1)
-#endif
-            for (long n = 0; n < count; ++n) {
-                const std::size_t i = static_cast<std::size_t>(n);
-                try {
-                    geodesic::ExactGeodesic* mine = &propagation;
-                    if (team > 1) {
-                        if (!own) own = std::make_unique<geodesic::ExactGeodesic>(g_.fine().mesh);
-                        mine = own.get();
-                    }
-                    leaving[i] = measure_from(i, *mine);
-                } catch (...) {
-                    errors[i] = std::current_exception();
-                }
-            }
-        }
-        for (const std::exception_ptr& e : errors)
-            if (e) std::rethrow_exception(e);
+        detail::for_each_with_propagation(
+            g_.fine().mesh, k_, threads,
+            [&](std::size_t i, geodesic::ExactGeodesic& mine) { leaving[i] = measure_from(i, mine); }, &propagation);
         std::vector<std::pair<std::size_t, std::size_t>> outside;  // diagonals whose shortest geodesic leaves
         for (std::size_t i = 0; i < k_; ++i)
             for (std::size_t j : leaving[i]) outside.emplace_back(i, j);
@@ -226,23 +194,8 @@ public:
     /// The triangulation that maximises the smallest corner (dynamic programming over the sub-polygons i..j);
     /// returns that corner, k_none when there is none with every corner above detail::k_min_new_corner.
     double best_triangulation() {
-        best_.assign(k_ * k_, k_none);
-        apex_.assign(k_ * k_, 0);
-        for (std::size_t i = 0; i + 1 < k_; ++i) best_[i * k_ + i + 1] = std::numeric_limits<double>::infinity();
-        for (std::size_t span = 2; span < k_; ++span)
-            for (std::size_t i = 0; i + span < k_; ++i) {
-                const std::size_t j = i + span;
-                if (!joined(i, j)) continue;
-                for (std::size_t m = i + 1; m < j; ++m) {
-                    const double value =
-                        std::min({best_[i * k_ + m], best_[m * k_ + j], smallest_corner(i, m, j)});
-                    if (value > best_[i * k_ + j]) {
-                        best_[i * k_ + j] = value;
-                        apex_[i * k_ + j] = m;
-                    }
-                }
-            }
-        const double best = best_[k_ - 1];
+        const double best = detail::best_polygon_triangulation(
+            k_, [this](std::size_t i, std::size_t m, std::size_t j) { return smallest_corner(i, m, j); }, apex_);
         return best > detail::k_min_new_corner ? best : k_none;
     }
 
@@ -323,8 +276,7 @@ private:
     std::vector<double> from_;      ///< per corner: the polar angle of its side to the next corner
     std::vector<double> position_;  ///< k×k: polar position at corner i of the edge to corner j; k_none if unusable
     std::vector<Diagonal> diagonals_;  ///< k×k, at [min·k + max]
-    std::vector<double> best_;
-    std::vector<std::size_t> apex_;
+    std::vector<std::size_t> apex_;  ///< of the best triangulation (detail::best_polygon_triangulation())
 };
 
 double smallest_corner_of(const GeodesicTriangulation& g, const std::set<FaceHandle>& faces) {

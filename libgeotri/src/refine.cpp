@@ -8,6 +8,7 @@
 #include <geotri/tangent_angles.h>
 
 #include "local_checks.h"
+#include "polygon_triangulation.h"
 
 #include <Eigen/Dense>
 
@@ -115,17 +116,17 @@ double planar_removal_estimate(const GeodesicTriangulation& g, VertexHandle v) {
         const Eigen::Vector2d a = points[p] - points[at], b = points[q] - points[at];
         return std::atan2(cross(a, b), a.dot(b));
     };
-    std::vector<double> best(k * k, -1.0);  // best[i·k + j]: the sub-polygon i..j
-    for (std::size_t i = 0; i + 1 < k; ++i) best[i * k + i + 1] = std::numeric_limits<double>::infinity();
-    for (std::size_t span = 2; span < k; ++span)
-        for (std::size_t i = 0; i + span < k; ++i) {
-            const std::size_t j = i + span;
-            if (!(i == 0 && j == k - 1) && !inside_diagonal(points, i, j)) continue;
-            for (std::size_t m = i + 1; m < j; ++m)
-                best[i * k + j] = std::max(best[i * k + j], std::min({best[i * k + m], best[m * k + j], angle(i, m, j),
-                                                                      angle(m, j, i), angle(j, i, m)}));
-        }
-    return best[k - 1];
+    auto usable = [&](std::size_t i, std::size_t j) {
+        return j == i + 1 || (i == 0 && j == k - 1) || inside_diagonal(points, i, j);
+    };
+    std::vector<std::size_t> apex;
+    return detail::best_polygon_triangulation(
+        k,
+        [&](std::size_t i, std::size_t m, std::size_t j) {
+            if (!usable(i, m) || !usable(m, j) || !usable(i, j)) return -std::numeric_limits<double>::infinity();
+            return std::min({angle(i, m, j), angle(m, j, i), angle(j, i, m)});
+        },
+        apex);
 }
 
 class Refiner {

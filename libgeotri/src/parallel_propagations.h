@@ -1,0 +1,57 @@
+#pragma once
+// A parallel loop whose iterations each need a propagation object: what improving flips and reconnecting a polygon
+// both run.
+
+#include <geodesic/exact_geodesic.h>
+#include <geodesic/mesh.h>
+
+#include <cstddef>
+#include <exception>
+#include <memory>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace geotri::detail {
+
+/// Calls work(k, propagation) for k in [0, n) on `threads` threads (0: as many as OpenMP likes), each with a
+/// propagation object over `mesh` of its own, made on first use; a single thread uses `reuse` instead when given.
+/// Rethrows the first exception (in k order) after the loop. The result is the same for any thread count when
+/// work(k, ...) writes only what belongs to k.
+template <class Work>
+void for_each_with_propagation(const geodesic::Mesh& mesh, std::size_t n, int threads, Work work,
+                               geodesic::ExactGeodesic* reuse = nullptr) {
+    std::vector<std::exception_ptr> errors(n);
+    const long count = static_cast<long>(n);
+    int team = 1;
+#ifdef _OPENMP
+    team = threads > 0 ? threads : omp_get_max_threads();
+#else
+    (void)threads;
+#endif
+    if (team > 1) reuse = nullptr;
+#ifdef _OPENMP
+#pragma omp parallel num_threads(team) if (team > 1)
+#endif
+    {
+        std::unique_ptr<geodesic::ExactGeodesic> own;  // this thread's, reused across iterations
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 1)
+#endif
+        for (long i = 0; i < count; ++i) {
+            const std::size_t k = static_cast<std::size_t>(i);
+            try {
+                if (!reuse && !own) own = std::make_unique<geodesic::ExactGeodesic>(mesh);
+                work(k, reuse ? *reuse : *own);
+            } catch (...) {
+                errors[k] = std::current_exception();
+            }
+        }
+    }
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+}
+
+}  // namespace geotri::detail
