@@ -92,6 +92,8 @@ private:
     struct StopPoint {
         SurfacePoint point;
         double window_estimate = k_infinity;  // best distance through windows, kept up to date as they arrive
+        double source_distance = k_infinity;  // straight from a source in one of its faces
+        std::vector<std::pair<int, double>> corners;  // the vertices of its faces, with their straight distances
         bool settled = false;
     };
 
@@ -663,13 +665,22 @@ ExactGeodesic::Impl::Best ExactGeodesic::Impl::best_way_to(const SurfacePoint& p
 }
 
 void ExactGeodesic::Impl::watch_stop_point(int index) {
-    const SurfacePoint& p = stops_[index].point;
+    StopPoint& stop = stops_[index];
+    const SurfacePoint& p = stop.point;
     if (p.kind == PointKind::vertex) return;  // its distance is always current
-    for (int f : faces_around(p))
+    // What all_stops_settled() needs besides the windows, worked out once rather than at every pop.
+    const Eigen::Vector3d position = mesh_.point(p);
+    for (int f : faces_around(p)) {
         for (int i = 0; i < 3; ++i) {
             watches_.emplace_back(3 * f + i, index);
             watched_[3 * f + i] = 1;
+            const int v = mesh_.triangle(f)[i];
+            stop.corners.emplace_back(v, (mesh_.position(v) - position).norm());
         }
+        for (int s = 0; s < static_cast<int>(sources_.size()); ++s)
+            if (source_touches_face(s, f))
+                stop.source_distance = std::min(stop.source_distance, (mesh_.point(sources_[s]) - position).norm());
+    }
 }
 
 bool ExactGeodesic::Impl::all_stops_settled(double key) {
@@ -681,15 +692,8 @@ bool ExactGeodesic::Impl::all_stops_settled(double key) {
         if (stop.point.kind == PointKind::vertex) {
             estimate = distance_[stop.point.vertex];
         } else {
-            estimate = stop.window_estimate;
-            const Eigen::Vector3d position = mesh_.point(stop.point);
-            for (int f : faces_around(stop.point)) {
-                for (int v : mesh_.triangle(f))
-                    estimate = std::min(estimate, distance_[v] + (mesh_.position(v) - position).norm());
-                for (int s = 0; s < static_cast<int>(sources_.size()); ++s)
-                    if (source_touches_face(s, f))
-                        estimate = std::min(estimate, (mesh_.point(sources_[s]) - position).norm());
-            }
+            estimate = std::min(stop.window_estimate, stop.source_distance);
+            for (const auto& [v, straight] : stop.corners) estimate = std::min(estimate, distance_[v] + straight);
         }
         stop.settled = estimate <= key;
         all = all && stop.settled;
@@ -708,7 +712,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     reset();
     sources_ = std::move(canonical_sources);
     max_distance_ = options.max_distance;
-    for (const SurfacePoint& p : stop_points) stops_.push_back(StopPoint{p});
+    for (const SurfacePoint& p : stop_points) stops_.emplace_back().point = p;
     for (int i = 0; i < static_cast<int>(stops_.size()); ++i) watch_stop_point(i);
     std::sort(watches_.begin(), watches_.end());
 
@@ -722,7 +726,9 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
         }
     }
 
-    std::vector<unsigned char> emitted_at_zero;  // a vertex source may be queued twice at distance 0
+    // A vertex source may be queued twice at distance 0. Few vertices are at distance 0 (the sources, and vertices
+    // at their positions), so a list is cheaper than a flag per vertex of the mesh.
+    std::vector<int> emitted_at_zero;
     while (!queue_.empty()) {
         const auto [key, item] = queue_.pop();
         ++stats_.queue_pops;
@@ -744,9 +750,8 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             const int v = -1 - item;
             if (key != distance_[v]) continue;  // superseded by a shorter distance
             if (key == 0.0) {
-                if (emitted_at_zero.empty()) emitted_at_zero.assign(mesh_.num_vertices(), 0);
-                if (emitted_at_zero[v]) continue;
-                emitted_at_zero[v] = 1;
+                if (std::find(emitted_at_zero.begin(), emitted_at_zero.end(), v) != emitted_at_zero.end()) continue;
+                emitted_at_zero.push_back(v);
             }
             emit_from_vertex(v);
         }

@@ -152,7 +152,7 @@ public:
 private:
     template <class Work>
     void for_each_parallel(std::size_t n, Work work) const {
-        detail::for_each_with_propagation(g_.fine().mesh, n, options_.threads, work);
+        detail::for_each_with_propagation(g_.fine().mesh, n, options_.threads, work, options_.propagation);
     }
 
     /// e and the four other edges of its two faces: the edges whose faces a flip of e changes.

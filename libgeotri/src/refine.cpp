@@ -145,6 +145,7 @@ public:
         // overlay that the in-region fallback needs costs more than the flips it could add.
         flip_options_.threads = 1;
         flip_options_.region_fallback = false;
+        flip_options_.propagation = &propagation_;
         for (VertexHandle v : g.coarse().vertices()) {
             if (g.location(v).kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(g.location(v).vertex);
             given_.push_back(g.location(v));
