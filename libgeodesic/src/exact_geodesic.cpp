@@ -120,6 +120,10 @@ private:
     SurfacePoint point_on_halfedge(int h, double x) const;
 
     void push_queue(double key, int item);
+    double estimate_left(const Eigen::Vector3d& x) const;
+    double estimate_left(const Window& w) const;
+    double vertex_key(int v) const;
+    bool is_settled_stop(const SurfacePoint& p) const;
 
     const Mesh& mesh_;
     std::vector<unsigned char> pseudo_source_;  // vertices that emit windows: saddles, boundary, zero-length edges
@@ -139,6 +143,7 @@ private:
     std::vector<std::pair<int, int>> watches_;  // (halfedge, stop index), sorted
     std::vector<unsigned char> watched_;        // per halfedge
     double max_distance_ = k_infinity;
+    std::vector<Eigen::Vector3d> goals_;  // goal-directed: the stop points' positions; empty otherwise
 };
 
 ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
@@ -171,6 +176,7 @@ void ExactGeodesic::Impl::reset() {
     sources_.clear();
     stops_.clear();
     watches_.clear();
+    goals_.clear();
     stats_ = PropagationStats{};
     settled_radius_ = k_infinity;
 }
@@ -186,8 +192,32 @@ void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor prede
     if (distance_[v] == k_infinity) touched_vertices_.push_back(v);
     distance_[v] = distance;
     predecessor_[v] = predecessor;
-    if (pseudo_source_[v] && distance <= max_distance_) push_queue(distance, -1 - v);
+    if (pseudo_source_[v] && distance <= max_distance_) push_queue(vertex_key(v), -1 - v);
 }
+
+double ExactGeodesic::Impl::estimate_left(const Eigen::Vector3d& x) const {
+    double nearest = k_infinity;
+    for (const Eigen::Vector3d& goal : goals_) nearest = std::min(nearest, (goal - x).norm());
+    return goals_.empty() ? 0.0 : nearest;
+}
+
+double ExactGeodesic::Impl::estimate_left(const Window& w) const {
+    // The least straight-line distance from the window's part of its edge to a goal: with the window's least
+    // distance, a lower bound of any path through it to a goal, since a path is never shorter than a straight line.
+    if (goals_.empty()) return 0.0;
+    const int h = w.halfedge;
+    const double length = mesh_.length(h);
+    const Eigen::Vector3d& tail = mesh_.position(mesh_.tail(h));
+    const Eigen::Vector3d along = (mesh_.position(mesh_.head(h)) - tail) / length;
+    double nearest = k_infinity;
+    for (const Eigen::Vector3d& goal : goals_) {
+        const double x = std::clamp((goal - tail).dot(along), w.b0, w.b1);
+        nearest = std::min(nearest, (goal - (tail + x * along)).norm());
+    }
+    return nearest;
+}
+
+double ExactGeodesic::Impl::vertex_key(int v) const { return distance_[v] + estimate_left(mesh_.position(v)); }
 
 namespace {
 
@@ -333,7 +363,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
             stop.window_estimate = std::min(stop.window_estimate, window_value_at(w, layout(h, stop.point)));
         }
     }
-    push_queue(w.lower_bound(), id);
+    push_queue(w.lower_bound() + estimate_left(w), id);
 }
 
 int ExactGeodesic::Impl::merge_with_siblings(int id) {
@@ -715,12 +745,14 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     for (const SurfacePoint& p : stop_points) stops_.emplace_back().point = p;
     for (int i = 0; i < static_cast<int>(stops_.size()); ++i) watch_stop_point(i);
     std::sort(watches_.begin(), watches_.end());
+    if (options.goal_directed && !std::isfinite(max_distance_))
+        for (const StopPoint& stop : stops_) goals_.push_back(mesh_.point(stop.point));
 
     for (int k = 0; k < static_cast<int>(sources_.size()); ++k) {
         const SurfacePoint& s = sources_[k];
         if (s.kind == PointKind::vertex) {
             relax_vertex(s.vertex, 0.0, {Via::source, k});
-            if (!pseudo_source_[s.vertex]) push_queue(0.0, -1 - s.vertex);
+            if (!pseudo_source_[s.vertex]) push_queue(vertex_key(s.vertex), -1 - s.vertex);
         } else {
             seed_from_point(s, k);
         }
@@ -735,21 +767,21 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
         // The next window to pop has waited in the queue since it was made, so its data is out of cache: fetch
         // it while this one is processed.
         if (!queue_.empty() && queue_.top_item() >= 0) prefetch(&windows_[queue_.top_item()]);
-        if (key > max_distance_) {
+        if (goals_.empty() && key > max_distance_) {  // a goal-directed key bounds more than the distance
             stats_.stopped_early = true;
             break;
         }
         if (!stops_.empty() && all_stops_settled(key)) {
             stats_.stopped_early = true;
-            settled_radius_ = key;
+            settled_radius_ = goals_.empty() ? key : 0.0;
             break;
         }
         if (item >= 0) {
             propagate_window(item);
         } else {
             const int v = -1 - item;
-            if (key != distance_[v]) continue;  // superseded by a shorter distance
-            if (key == 0.0) {
+            if (key != vertex_key(v)) continue;  // superseded by a shorter distance
+            if (distance_[v] == 0.0) {
                 if (std::find(emitted_at_zero.begin(), emitted_at_zero.end(), v) != emitted_at_zero.end()) continue;
                 emitted_at_zero.push_back(v);
             }
@@ -761,14 +793,20 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     stats_.window_bytes = windows_.capacity() * sizeof(Window) + merged_pieces_.capacity() * sizeof(int);
 }
 
-double ExactGeodesic::Impl::vertex_distance(int v) const {
-    const double d = distance_[v];
-    return d <= settled_radius_ ? d : k_infinity;
+bool ExactGeodesic::Impl::is_settled_stop(const SurfacePoint& p) const {
+    return std::any_of(stops_.begin(), stops_.end(),
+                       [&p](const StopPoint& stop) { return stop.settled && stop.point == p; });
 }
 
-double ExactGeodesic::Impl::distance(const SurfacePoint& p) const {
-    const double d = best_way_to(mesh_.canonical(p)).distance;
-    return d <= settled_radius_ ? d : k_infinity;
+double ExactGeodesic::Impl::vertex_distance(int v) const {
+    const double d = distance_[v];
+    return d <= settled_radius_ || is_settled_stop(SurfacePoint::at_vertex(v)) ? d : k_infinity;
+}
+
+double ExactGeodesic::Impl::distance(const SurfacePoint& raw) const {
+    const SurfacePoint p = mesh_.canonical(raw);
+    const double d = best_way_to(p).distance;
+    return d <= settled_radius_ || is_settled_stop(p) ? d : k_infinity;
 }
 
 SurfacePoint ExactGeodesic::Impl::point_on_halfedge(int h, double x) const {
@@ -786,7 +824,8 @@ SurfacePoint ExactGeodesic::Impl::point_on_halfedge(int h, double x) const {
 std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint& raw_target) const {
     const SurfacePoint target = mesh_.canonical(raw_target);
     const Best best = best_way_to(target);
-    if (!std::isfinite(best.distance) || !(best.distance <= settled_radius_)) return {};  // unreached
+    if (!std::isfinite(best.distance) || !(best.distance <= settled_radius_ || is_settled_stop(target)))
+        return {};  // unreached
 
     std::vector<SurfacePoint> path{target};
     auto append = [&](const SurfacePoint& p) {

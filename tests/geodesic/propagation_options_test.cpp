@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 
 namespace geotri::test {
@@ -169,6 +170,58 @@ TEST_P(Options, stop_points_give_full_distances_within_the_settled_radius_and_in
     EXPECT_GT(inside, 0);
     EXPECT_GT(outside, 0) << "the stop points did not stop the propagation early";
     log.report();
+}
+
+TEST_P(Options, goal_directed_stop_points_are_exact_and_explore_less) {
+    PointSampler sampler(25);
+    FailureLog log(GetParam().name + ": goal-directed stop points");
+    const Adjacency adjacency(arrays_);
+    std::size_t plain_windows = 0, directed_windows = 0;
+    for (int round = 0; round < 4; ++round) {
+        const SurfacePoint source = SurfacePoint::at_vertex(sampler.vertex(arrays_));
+        ExactGeodesic full(*mesh_);
+        full.propagate({source});
+        // One stop point of each kind, then the three together.
+        const std::vector<SurfacePoint> points{SurfacePoint::at_vertex(sampler.vertex(arrays_)),
+                                               sampler.edge_point(arrays_), sampler.face_point(arrays_)};
+        std::vector<std::vector<SurfacePoint>> stop_sets{{points[0]}, {points[1]}, {points[2]}, points};
+        for (const auto& stops : stop_sets) {
+            PropagationOptions options;
+            options.stop_points = stops;
+            ExactGeodesic plain(*mesh_);
+            plain.propagate({source}, options);
+            options.goal_directed = true;
+            ExactGeodesic directed(*mesh_);
+            directed.propagate({source}, options);
+            plain_windows += plain.stats().windows_created;
+            directed_windows += directed.stats().windows_created;
+            for (const auto& p : stops) {
+                const double expected = full.distance(p), got = directed.distance(p);
+                const std::string what = "from " + spec(source) + ", stop point " + spec(p) + " (of " +
+                                         std::to_string(stops.size()) + ")";
+                if (!near_relative(got, expected, 1e-12, 1e-2 * diagonal_))
+                    log.add(what + ": expected " + exact(expected) + ", got " + exact(got));
+                const PathReport report = check_geodesic_path(arrays_, adjacency, directed.shortest_path(p), 1e-6);
+                for (const auto& problem : report.problems) log.add(what + ": path: " + problem);
+                if (!near_relative(report.length, expected, 1e-9, 1e-2 * diagonal_))
+                    log.add(what + ": path length " + exact(report.length) + ", expected " + exact(expected));
+            }
+            if (!directed.stats().stopped_early) continue;
+            EXPECT_EQ(directed.settled_radius(), 0.0);
+            // Nothing but the stop points (and the source, at 0) is promised: every other vertex reports +inf.
+            for (int v = 0; v < mesh_->num_vertices(); v += 7) {
+                const SurfacePoint at_v = SurfacePoint::at_vertex(v);
+                if (at_v != source && std::find(stops.begin(), stops.end(), at_v) == stops.end() &&
+                    directed.distance(v) != inf)
+                    log.add("from " + spec(source) + ": v:" + std::to_string(v) + " is not a stop point but reports " +
+                            exact(directed.distance(v)));
+            }
+        }
+    }
+    log.report();
+    EXPECT_LT(directed_windows, plain_windows) << "goal-directed propagation explored no less";
+    std::cout << GetParam().name << ": windows to reach the stop points " << plain_windows << " plain, "
+              << directed_windows << " goal-directed\n";
 }
 
 TEST_P(Options, max_distance_gives_full_distances_within_and_inf_beyond) {

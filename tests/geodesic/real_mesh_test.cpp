@@ -285,6 +285,35 @@ TEST_P(RealMesh, stop_points_max_distance_and_point_sources_agree_with_full_prop
     }
     stop_log.report();
 
+    // The same stop points, one at a time and all together, goal-directed: exact at the stop points, with paths
+    // as long as the distances, and +inf elsewhere when stopped early.
+    FailureLog directed_log(name + ": goal-directed stop points");
+    const Adjacency adjacency(arrays_);
+    std::vector<std::vector<SurfacePoint>> stop_sets;
+    for (const auto& p : stop.stop_points) stop_sets.push_back({p});
+    stop_sets.push_back(stop.stop_points);
+    for (const auto& stops : stop_sets) {
+        PropagationOptions directed;
+        directed.stop_points = stops;
+        directed.goal_directed = true;
+        ExactGeodesic toward(mesh);
+        toward.propagate({SurfacePoint::at_vertex(a)}, directed);
+        for (const auto& p : stops) {
+            const double expected = full.distance(p), got = toward.distance(p);
+            const std::string what = "stop point " + spec(p) + " (of " + std::to_string(stops.size()) + ")";
+            if (!near_relative(got, expected, 1e-12, floor))
+                directed_log.add(what + ": full " + exact(expected) + ", goal-directed " + exact(got));
+            if (expected == inf) continue;
+            const PathReport report = check_geodesic_path(arrays_, adjacency, toward.shortest_path(p), 1e-6);
+            for (const auto& problem : report.problems) directed_log.add(what + ": path: " + problem);
+            if (!near_relative(report.length, expected, 1e-9, floor))
+                directed_log.add(what + ": path length " + exact(report.length) + ", distance " + exact(expected));
+        }
+        if (toward.stats().stopped_early && toward.settled_radius() != 0.0)
+            directed_log.add("settled radius " + exact(toward.settled_radius()) + " after stopping early, not 0");
+    }
+    directed_log.report();
+
     // Maximum distance: 30% of the farthest vertex.
     PropagationOptions limit;
     limit.max_distance = 0.3 * farthest;

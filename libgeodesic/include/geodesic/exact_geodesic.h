@@ -18,6 +18,12 @@ struct PropagationOptions {
     /// When not empty, propagation ends as soon as every stop point's distance is final. Their distances (and
     /// those of every point nearer than settled_radius()) are exact; farther points report +inf.
     std::vector<SurfacePoint> stop_points;
+    /// With stop points: explore towards them first. Events are taken in the order of their distance plus the
+    /// straight-line distance that is left to the nearest stop point (A*), which never overestimates, so the stop
+    /// points' distances and paths stay exact while much less of the mesh is explored when they lie in few
+    /// directions. Nothing else is promised then: when the propagation stops early, settled_radius() is 0 and
+    /// every point other than a stop point reports +inf. Ignored without stop points or with a max_distance.
+    bool goal_directed = false;
 };
 
 /// Counters of the last propagation, for benchmarks and tuning.
@@ -61,7 +67,8 @@ public:
     /// Its length equals distance(target). Empty if the target is unreachable or beyond the settled radius.
     std::vector<SurfacePoint> shortest_path(const SurfacePoint& target) const;
 
-    /// Every point nearer than this is exact: +inf after a complete propagation.
+    /// Every point nearer than this is exact: +inf after a complete propagation, 0 after a goal-directed one that
+    /// stopped early (then only the stop points are).
     double settled_radius() const;
     const PropagationStats& stats() const;
 
