@@ -180,6 +180,7 @@ FlipPlan plan_flip(const GeodesicTriangulation& g, EdgeHandle e, const FlipOptio
     const SurfacePoint& to = g.location(plan.d);
     geodesic::PropagationOptions propagation_options;
     propagation_options.stop_points = {to};
+    propagation_options.goal_directed = true;
     propagation->propagate({from}, propagation_options);
     plan.path = propagation->shortest_path(to);
     if (plan.path.size() < 2) {

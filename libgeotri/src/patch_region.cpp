@@ -139,6 +139,7 @@ std::vector<PatchRegion::Path> PatchRegion::shortest_paths(const SurfacePoint& f
         else results[i].failure = "an end of the path is not in the region";
     }
     if (options.stop_points.empty()) return results;
+    options.goal_directed = true;
     geodesic::ExactGeodesic propagation(*mesh_);
     propagation.propagate({*start}, options);
     for (std::size_t i = 0; i < to.size(); ++i)

@@ -160,6 +160,7 @@ public:
             options.stop_points.push_back(g_.location(polygon_.corners[j]));
         }
         if (ends.empty()) return leaving;
+        options.goal_directed = true;
         propagation.propagate({g_.location(polygon_.corners[i])}, options);
         for (std::size_t j : ends)
             if (!use(i, j, propagation.shortest_path(g_.location(polygon_.corners[j])), true)) leaving.push_back(j);

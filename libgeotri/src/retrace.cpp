@@ -18,6 +18,7 @@ std::string retrace_edges(GeodesicTriangulation& g, OpenMesh::VertexHandle v,
     }
     geodesic::PropagationOptions options;
     for (OpenMesh::VertexHandle u : to) options.stop_points.push_back(g.location(u));
+    options.goal_directed = true;
     propagation->propagate({g.location(v)}, options);
     for (OpenMesh::VertexHandle u : to) {
         Polyline path = propagation->shortest_path(g.location(u));

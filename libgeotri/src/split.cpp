@@ -107,6 +107,7 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
     }
     geodesic::PropagationOptions propagation_options;
     for (const Spoke& s : spokes) propagation_options.stop_points.push_back(g.location(s.to));
+    propagation_options.goal_directed = true;
     propagation->propagate({from}, propagation_options);
 
     Overlay built;

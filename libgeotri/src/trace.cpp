@@ -429,6 +429,7 @@ TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options) {
                 geodesic::PropagationOptions propagation_options;
                 for (const HalfedgeHandle h : p.edges)
                     propagation_options.stop_points.push_back(g.location(coarse.to_vertex_handle(h)));
+                propagation_options.goal_directed = true;
                 geodesic->propagate({g.location(VertexHandle(p.source))}, propagation_options);
                 windows[slot] = geodesic->stats().windows_created;
                 for (std::size_t k = 0; k < p.edges.size(); ++k) {
