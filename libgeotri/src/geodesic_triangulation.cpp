@@ -22,6 +22,12 @@ void GeodesicTriangulation::set_location(OpenMesh::VertexHandle v, const Surface
     coarse_.set_point(v, CoarseMesh::Point(x.x(), x.y(), x.z()));
 }
 
+const Polyline& GeodesicTriangulation::polyline(OpenMesh::EdgeHandle e) const {
+    static const Polyline none;
+    const std::shared_ptr<const Polyline>& shared = coarse_.property(polyline_, e);
+    return shared ? *shared : none;
+}
+
 Polyline GeodesicTriangulation::path(OpenMesh::HalfedgeHandle h) const {
     Polyline p = polyline(coarse_.edge_handle(h));
     if (h != coarse_.halfedge_handle(coarse_.edge_handle(h), 0)) std::reverse(p.begin(), p.end());
@@ -31,7 +37,7 @@ Polyline GeodesicTriangulation::path(OpenMesh::HalfedgeHandle h) const {
 void GeodesicTriangulation::set_polyline(OpenMesh::EdgeHandle e, Polyline polyline) {
     for (SurfacePoint& p : polyline) p = fine_->mesh.canonical(p);  // one representation per point (DESIGN.md §1)
     coarse_.property(length_, e) = geodesic::path_length(fine_->mesh, polyline);
-    coarse_.property(polyline_, e) = std::move(polyline);
+    coarse_.property(polyline_, e) = std::make_shared<const Polyline>(std::move(polyline));
 }
 
 void GeodesicTriangulation::set_path(OpenMesh::HalfedgeHandle h, Polyline path) {

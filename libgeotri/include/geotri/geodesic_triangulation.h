@@ -28,7 +28,8 @@ struct CoarseTraits : public OpenMesh::DefaultTraits {
 using CoarseMesh = OpenMesh::TriMesh_ArrayKernelT<CoarseTraits>;
 
 /// G: the coarse mesh, the location of each coarse vertex on T, and the polyline and length of each coarse edge.
-/// Copies are deep (the fine mesh is shared): an operation that may be refused can work on a copy.
+/// Copies are independent (the fine mesh is shared, and so are the polylines, which are never changed in place but
+/// replaced): an operation that may be refused can work on a copy, and copying costs no polyline.
 class GeodesicTriangulation {
 public:
     /// Takes the coarse mesh as it is; locations and polylines start empty (location: vertex -1; polyline: none).
@@ -45,7 +46,7 @@ public:
 
     /// The polyline of edge e, oriented along its first halfedge (from from_vertex(halfedge(e, 0))); empty when
     /// not traced yet.
-    const Polyline& polyline(OpenMesh::EdgeHandle e) const { return coarse_.property(polyline_, e); }
+    const Polyline& polyline(OpenMesh::EdgeHandle e) const;
     /// The polyline of the halfedge h's edge, oriented from from_vertex(h) to to_vertex(h).
     Polyline path(OpenMesh::HalfedgeHandle h) const;
     /// Sets the polyline of e, oriented along its first halfedge, with every point in its canonical form
@@ -59,7 +60,7 @@ private:
     std::shared_ptr<const FineMesh> fine_;
     CoarseMesh coarse_;
     OpenMesh::VPropHandleT<SurfacePoint> location_;
-    OpenMesh::EPropHandleT<Polyline> polyline_;
+    OpenMesh::EPropHandleT<std::shared_ptr<const Polyline>> polyline_;  // null: not traced
     OpenMesh::EPropHandleT<double> length_;
 };
 
