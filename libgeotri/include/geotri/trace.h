@@ -22,7 +22,7 @@ struct TraceResult {
     double largest_location_move = 0.0;  ///< how far a coarse vertex had to move to land on T
     int largest_move_vertex = -1;        ///< the coarse vertex that moved farthest (-1 when none moved)
     int moved_vertices = 0;              ///< coarse vertices that did not coincide exactly with a vertex of T
-    double longest_propagation = 0.0;    ///< the largest geodesic radius that one propagation had to reach
+    double longest_propagation = 0.0;    ///< the longest edge: the farthest that one propagation had to reach
     std::size_t windows_created = 0;     ///< summed over every propagation (libgeodesic's PropagationStats)
     std::size_t polyline_points = 0;     ///< summed over every edge polyline
     double seconds = 0.0;
@@ -30,7 +30,7 @@ struct TraceResult {
 
 /// Locates every coarse vertex on T (exact coincidence with a fine vertex, else the closest point of T) and
 /// traces every edge: each edge's polyline becomes the exact shortest geodesic between the locations of its ends.
-/// Each edge is traced from one of its ends only; the result is bit-identical for any thread count.
+/// Each edge is traced from one of its ends, goal-directed; the result is bit-identical for any thread count.
 /// Throws InvalidInput when a coarse component does not lie on one fine component, when two coarse components lie
 /// on the same fine component, or when two coarse vertices land on the same point of T; NumericalError if
 /// libgeodesic finds no path between two ends on the same component. Progress goes through options.progress only.
