@@ -1,5 +1,6 @@
 // geotri-bench-propagation: times single-source exact geodesic propagation to every vertex, and compares the
-// distances with CGAL's Surface_mesh_shortest_path on the same mesh and source when CGAL is available.
+// distances with CGAL's Surface_mesh_shortest_path on the same mesh and source when CGAL is available. With
+// --pairs, times point-to-point queries instead, plain and goal-directed.
 // Prints one Markdown table row per mesh on stdout; progress and errors go to stderr.
 
 #include "cgal_reference.h"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <ctime>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -50,6 +52,9 @@ options:
   --no-header          print no table header
   --label TEXT         name of the mesh in the table (default: the argument, without folders for files)
   --dump FILE          write the vertex distances (%.17g, one a line) to FILE, for comparing builds; one mesh only
+  --pairs N            instead: N point-to-point queries between vertices drawn with a fixed seed, each a
+                       propagation with the target as its stop point, plain and goal-directed (A*); the mean CPU
+                       time and windows of each, and the largest relative difference of their distances
   -h, --help           this text
 )";
 
@@ -61,6 +66,7 @@ struct Options {
     bool header = true;
     std::string label;
     std::string dump;
+    long pairs = 0;
     std::vector<std::string> meshes;
 };
 
@@ -107,6 +113,9 @@ Options parse(int argc, char** argv) {
             options.label = value();
         } else if (arg == "--dump") {
             options.dump = value();
+        } else if (arg == "--pairs") {
+            options.pairs = parse_count(value());
+            if (options.pairs < 1) usage_error("--pairs must be at least 1");
         } else if (!arg.empty() && arg[0] == '-') {
             usage_error("unknown option " + arg);
         } else {
@@ -169,10 +178,12 @@ double cpu_seconds() {
     return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// Returns false when the distances disagree with CGAL beyond 1e-9 of the largest distance.
-bool run_one(const std::string& spec, const Options& options) {
-    std::string label = options.label;
-    if (label.empty()) label = spec.rfind("gen:", 0) == 0 ? spec.substr(4) : spec.substr(spec.find_last_of('/') + 1);
+std::string label_of(const std::string& spec, const Options& options) {
+    if (!options.label.empty()) return options.label;
+    return spec.rfind("gen:", 0) == 0 ? spec.substr(4) : spec.substr(spec.find_last_of('/') + 1);
+}
+
+TriangleMesh load(const std::string& spec, const std::string& label) {
     TriangleMesh arrays;
     if (spec.rfind("gen:", 0) == 0) {
         arrays = generated(spec);
@@ -182,6 +193,50 @@ bool run_one(const std::string& spec, const Options& options) {
         arrays.triangles = std::move(data.triangles);
     }
     std::cerr << label << ": " << arrays.triangles.size() << " faces\n";
+    return arrays;
+}
+
+// Point-to-point queries, plain and goal-directed. Returns false when their distances differ beyond 1e-12
+// relative: both must be exact.
+bool run_pairs(const std::string& spec, const Options& options) {
+    const std::string label = label_of(spec, options);
+    const TriangleMesh arrays = load(spec, label);
+    const geotri::geodesic::Mesh mesh(arrays.positions, arrays.triangles);
+    std::uint64_t state = 12345;  // a fixed linear congruential sequence: the same pairs on every run
+    auto next_vertex = [&] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return static_cast<int>((state >> 33) % static_cast<std::uint64_t>(mesh.num_vertices()));
+    };
+    ExactGeodesic propagation(mesh);
+    double seconds[2] = {0.0, 0.0}, windows[2] = {0.0, 0.0}, worst = 0.0;
+    for (long k = 0; k < options.pairs; ++k) {
+        const SurfacePoint from = SurfacePoint::at_vertex(next_vertex()), to = SurfacePoint::at_vertex(next_vertex());
+        double distance[2];
+        for (int directed = 0; directed < 2; ++directed) {
+            geotri::geodesic::PropagationOptions query;
+            query.stop_points = {to};
+            query.goal_directed = directed == 1;
+            const double start = cpu_seconds();
+            propagation.propagate({from}, query);
+            distance[directed] = propagation.distance(to);
+            seconds[directed] += cpu_seconds() - start;
+            windows[directed] += static_cast<double>(propagation.stats().windows_created);
+        }
+        if (std::isfinite(distance[0]) || std::isfinite(distance[1]))
+            worst = std::max(worst, std::abs(distance[1] - distance[0]) / std::max(distance[0], 1e-300));
+    }
+    const double n = static_cast<double>(options.pairs);
+    std::cout << "| " << label << " | " << arrays.triangles.size() << " | " << options.pairs << " | "
+              << fixed(1e3 * seconds[0] / n, 2) << " | " << fixed(windows[0] / n, 0) << " | "
+              << fixed(1e3 * seconds[1] / n, 2) << " | " << fixed(windows[1] / n, 0) << " | "
+              << fixed(seconds[0] / seconds[1], 1) << " | " << scientific(worst) << " |" << std::endl;
+    return worst <= 1e-12;
+}
+
+// Returns false when the distances disagree with CGAL beyond 1e-9 of the largest distance.
+bool run_one(const std::string& spec, const Options& options) {
+    const std::string label = label_of(spec, options);
+    const TriangleMesh arrays = load(spec, label);
 
     double start = cpu_seconds();
     const geotri::geodesic::Mesh mesh(arrays.positions, arrays.triangles);
@@ -260,7 +315,12 @@ bool run_one(const std::string& spec, const Options& options) {
 
 int main(int argc, char** argv) {
     const Options options = parse(argc, argv);
-    if (options.header) {
+    if (options.header && options.pairs > 0) {
+        std::cout << "| mesh | faces | pairs | plain (ms) | plain windows | goal-directed (ms) | goal-directed windows | "
+                     "speed-up | max rel diff |\n"
+                     "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+                  << std::endl;
+    } else if (options.header) {
         std::cout << "| mesh | faces | ours (s) | CGAL (s) | ratio | max rel diff | MB | windows | setup (s) | window MB | "
                      "queue pops |\n"
                      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
@@ -269,7 +329,7 @@ int main(int argc, char** argv) {
     int status = 0;
     for (const auto& spec : options.meshes) {
         try {
-            if (!run_one(spec, options)) status = 3;
+            if (!(options.pairs > 0 ? run_pairs(spec, options) : run_one(spec, options))) status = 3;
         } catch (const std::exception& error) {
             std::cerr << "geotri-bench-propagation: error: " << spec << ": " << error.what() << "\n";
             status = 1;
