@@ -673,6 +673,12 @@ Overlay build_overlay(const GeodesicTriangulation& g) {
     auto head = [&](int h) { return out.triangles[h / 3][(h % 3 + 1) % 3]; };
 
     // 5. Regions: triangles joined across uncut edges; corners joined likewise, for the regions' own topology.
+    // Only an edge between two vertices of the cut can be cut: most edges are then told apart without a lookup.
+    std::vector<char> on_cut(nv, 0);
+    for (const auto& [key, edge] : cut_owner) {
+        on_cut[static_cast<std::size_t>(key >> 32)] = 1;
+        on_cut[static_cast<std::size_t>(key & 0xffffffffu)] = 1;
+    }
     DisjointSets triangle_sets(nt), corner_sets(3 * nt);
     std::vector<char> boundary_halfedge(3 * nt, 0);
     std::vector<int> twin(3 * nt, -1);
@@ -680,7 +686,7 @@ Overlay build_overlay(const GeodesicTriangulation& g) {
         const int a = tail(h), b = head(h);
         const int t = find_halfedge(b, a);
         twin[h] = t;
-        const bool cut = t < 0 || cut_owner.count(undirected_key(a, b)) != 0;
+        const bool cut = t < 0 || (on_cut[a] && on_cut[b] && cut_owner.count(undirected_key(a, b)) != 0);
         if (cut) {
             boundary_halfedge[h] = 1;
             continue;
