@@ -159,6 +159,28 @@ TEST_F(Trace, coarse_torus_gives_shortest_geodesics) {
     expect_edges_are_shortest_geodesics(g);
 }
 
+// Copies share their polylines (they are replaced, never changed in place): a copy changed afterwards must leave
+// the original as it was.
+TEST_F(Trace, a_copy_of_g_changes_independently_of_the_original) {
+    const auto fine = fine_of(geotri::test::torus(3.0, 1.0, 48, 24), "torus");
+    GeodesicTriangulation g(fine, geotri::make_coarse_mesh(coarse_torus(fine->mesh, 48, 24, 8, 6), "coarse torus"));
+    geotri::trace(g);
+    const OpenMesh::EdgeHandle e(0);
+    const geotri::Polyline before = g.polyline(e);
+    const double length_before = g.length(e);
+    GeodesicTriangulation copy = g;
+    EXPECT_EQ(&copy.polyline(e), &g.polyline(e)) << "the copy should share the polyline, not copy it";
+    geotri::Polyline reversed = before;
+    std::reverse(reversed.begin(), reversed.end());
+    copy.set_path(copy.coarse().halfedge_handle(e, 1), reversed);  // the same path along the other halfedge
+    copy.set_polyline(OpenMesh::EdgeHandle(1), {before.front(), before.front()});
+    EXPECT_EQ(g.polyline(e), before);
+    EXPECT_EQ(g.length(e), length_before);
+    EXPECT_NE(g.polyline(OpenMesh::EdgeHandle(1)), copy.polyline(OpenMesh::EdgeHandle(1)));
+    EXPECT_EQ(copy.polyline(e), before);
+    EXPECT_NE(&copy.polyline(e), &g.polyline(e));
+}
+
 TEST_F(Trace, output_is_identical_for_any_thread_count) {
     const auto fine = fine_file(geotri::test::torus(3.0, 1.0, 48, 24), "torus.off");
     const geotri::CoarseMesh coarse = geotri::make_coarse_mesh(coarse_torus(fine->mesh, 48, 24, 6, 4), "coarse");
