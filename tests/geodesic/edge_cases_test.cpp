@@ -332,6 +332,9 @@ std::vector<PropagationRun> varied_runs(const TriangleMesh& arrays) {
     PropagationRun stopped{{sampler.edge_point(arrays)}, {}};
     stopped.options.stop_points = {SurfacePoint::at_vertex(101), sampler.face_point(arrays)};
     runs.push_back(stopped);
+    PropagationRun directed = stopped;  // the runs after it must not inherit its goals
+    directed.options.goal_directed = true;
+    runs.push_back(directed);
     runs.push_back({{SurfacePoint::at_vertex(7), sampler.edge_point(arrays), sampler.face_point(arrays)}, {}});
     runs.push_back({{SurfacePoint::at_vertex(3)}, {}});  // the first one again, after everything else
     return runs;
