@@ -196,9 +196,10 @@ void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor prede
 }
 
 double ExactGeodesic::Impl::estimate_left(const Eigen::Vector3d& x) const {
+    if (goals_.empty()) return 0.0;
     double nearest = k_infinity;
     for (const Eigen::Vector3d& goal : goals_) nearest = std::min(nearest, (goal - x).norm());
-    return goals_.empty() ? 0.0 : nearest;
+    return nearest;
 }
 
 double ExactGeodesic::Impl::estimate_left(const Window& w) const {

@@ -8,6 +8,7 @@
 #include <geotri/tangent_angles.h>
 
 #include "local_checks.h"
+#include "plane_segments.h"
 #include "polygon_triangulation.h"
 
 #include <Eigen/Dense>
@@ -60,8 +61,6 @@ std::vector<EdgeHandle> link_edges(const CoarseMesh& coarse, VertexHandle v) {
     return edges;
 }
 
-double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
-
 /// Whether the segment between corners p and q of the planar polygon `points` (counter-clockwise) runs inside it:
 /// it meets no other corner and no side, and its midpoint is inside.
 bool inside_diagonal(const std::vector<Eigen::Vector2d>& points, std::size_t p, std::size_t q) {
@@ -71,12 +70,13 @@ bool inside_diagonal(const std::vector<Eigen::Vector2d>& points, std::size_t p, 
         const std::size_t s = (r + 1) % k;
         if (r != p && r != q) {
             const double t = (points[r] - a).dot(b - a) / (b - a).squaredNorm();
-            if (t > 0.0 && t < 1.0 && std::abs(cross(b - a, points[r] - a)) <= 1e-12 * (b - a).squaredNorm())
+            if (t > 0.0 && t < 1.0 && std::abs(detail::cross(b - a, points[r] - a)) <= 1e-12 * (b - a).squaredNorm())
                 return false;
         }
         if (r == p || r == q || s == p || s == q) continue;
         const Eigen::Vector2d c = points[r], d = points[s];
-        if (cross(b - a, c - a) * cross(b - a, d - a) < 0.0 && cross(d - c, a - c) * cross(d - c, b - c) < 0.0)
+        if (detail::cross(b - a, c - a) * detail::cross(b - a, d - a) < 0.0 &&
+            detail::cross(d - c, a - c) * detail::cross(d - c, b - c) < 0.0)
             return false;
     }
     const Eigen::Vector2d mid = 0.5 * (a + b);
@@ -114,7 +114,7 @@ double planar_removal_estimate(const GeodesicTriangulation& g, VertexHandle v) {
     }
     auto angle = [&](std::size_t at, std::size_t p, std::size_t q) {  // counter-clockwise; negative when reflex
         const Eigen::Vector2d a = points[p] - points[at], b = points[q] - points[at];
-        return std::atan2(cross(a, b), a.dot(b));
+        return std::atan2(detail::cross(a, b), a.dot(b));
     };
     auto usable = [&](std::size_t i, std::size_t j) {
         return j == i + 1 || (i == 0 && j == k - 1) || inside_diagonal(points, i, j);
@@ -202,7 +202,6 @@ public:
             }
             if (!refine_face(worst)) given_up.insert(vertices_of(coarse, worst));
             progress("angle refinement");
-            progress("angle refinement");
         }
     }
 
@@ -289,7 +288,8 @@ private:
             if (static_cast<std::size_t>(f.idx()) < before.n_faces() && !before.status(f).deleted() &&
                 vertices_of(before, f) == vertices_of(trial.coarse(), f))
                 continue;
-            for (HalfedgeHandle h : halfedges_of(trial.coarse(), f)) smallest = std::min(smallest, corner_angle(trial, h));
+            for (HalfedgeHandle h : halfedges_of(trial.coarse(), f))
+                smallest = std::min(smallest, corner_angle(trial, h));
         }
         return smallest;
     }
@@ -408,8 +408,8 @@ private:
             }
             double smallest = std::numeric_limits<double>::infinity();
             for (VertexHandle c : done.corners_after) smallest = std::min(smallest, smallest_corner_around(trial, c));
-            if (smallest <= done.min_corner_before || smallest < min_angle_ || smallest_changed_corner(trial) < keep_above_ ||
-                smallest <= best_corner)
+            if (smallest <= done.min_corner_before || smallest < min_angle_ || smallest <= best_corner ||
+                smallest_changed_corner(trial) < keep_above_)
                 continue;
             best.emplace(std::move(trial));
             best_corner = smallest;
