@@ -20,6 +20,7 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <unordered_set>
 
 namespace geotri {
 
@@ -504,10 +505,10 @@ private:
     std::optional<int> curved_vertex_near(const SurfacePoint& p, double radius) const {
         const geodesic::Mesh& mesh = g_.fine().mesh;
         const Eigen::Vector3d x = mesh.point(p);
-        std::vector<int> stack, seen_faces;
+        std::vector<int> stack;
+        std::unordered_set<int> seen_faces;
         auto visit = [&](int f) {
-            if (std::find(seen_faces.begin(), seen_faces.end(), f) != seen_faces.end()) return;
-            seen_faces.push_back(f);
+            if (!seen_faces.insert(f).second) return;
             double nearest = std::numeric_limits<double>::infinity(), longest = 0.0;
             for (int i = 0; i < 3; ++i) {
                 nearest = std::min(nearest, (mesh.position(mesh.triangle(f)[i]) - x).norm());

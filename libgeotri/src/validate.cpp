@@ -44,12 +44,16 @@ std::string number(double x) {
     return buffer;
 }
 
-/// The key of the fine edge {a, b}: the smaller of its halfedges.
+/// The key of the fine edge of halfedge h: the smaller of its halfedges (T is closed and manifold: FineMesh).
+int edge_key(const Mesh& mesh, int h) {
+    const int twin = mesh.twin(h);
+    return twin < 0 ? h : std::min(h, twin);
+}
+
+/// The key of the fine edge {a, b}.
 int edge_key(const Mesh& mesh, int a, int b) {
-    const int h = mesh.find_halfedge(a, b), g = mesh.find_halfedge(b, a);
-    if (h < 0) return g;
-    if (g < 0) return h;
-    return std::min(h, g);
+    const int h = mesh.find_halfedge(a, b);
+    return edge_key(mesh, h >= 0 ? h : mesh.find_halfedge(b, a));
 }
 
 /// A point that takes part in condition 3: point `index` of the polyline of coarse edge `feature` (feature < number
@@ -328,7 +332,7 @@ void Validator::add_point(const Item& item) {
         // Also on every fine edge at the vertex, so that a crossing a hair away from it is seen.
         for (int h : mesh_.outgoing_halfedges(p.vertex)) {
             const int w = mesh_.head(h);
-            edge_points_.push_back({edge_key(mesh_, p.vertex, w), p.vertex < w ? 0.0 : 1.0, item});
+            edge_points_.push_back({edge_key(mesh_, h), p.vertex < w ? 0.0 : 1.0, item});
         }
     } else if (p.kind == PointKind::edge) {
         edge_points_.push_back({edge_key(mesh_, p.edge_v0, p.edge_v1), p.t, item});

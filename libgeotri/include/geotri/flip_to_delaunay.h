@@ -87,7 +87,7 @@ struct FlipToDelaunayResult {
 /// violations (named by validate(), or at a vertex or face it names); where no flip helps, split the forks at the
 /// vertices involved (split_fork(), singly, then as a chain), collapse them into a neighbour (collapse_edge()), or
 /// move them to a vertex of T nearby (relocate_vertex()); an operation is kept only when it strictly lowers the
-/// number of violations (without raising that of conditions 1-3); it stops when G is valid or no such operation is
+/// number of violations of conditions 1-3, or, with none left, that of condition 4; it stops when G is valid or no such operation is
 /// left. Trials run in parallel, and the first that helps in a fixed order is kept. Improve (only on a valid G):
 /// sweeps over the edges, flipping by the criterion with plan_flip()'s local checks, until a sweep makes no flip or
 /// max_improve_passes is reached; it terminates because each flip strictly improves a finite order (criterion
