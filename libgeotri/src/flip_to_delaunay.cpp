@@ -67,10 +67,10 @@ struct Evaluation {
 };
 
 /// Improve, in sweeps. Each sweep evaluates (in parallel: G is only read) every edge whose two faces changed since
-/// its last evaluation, then the flips whose shortest geodesic left the two patches once more with the shortest
-/// path inside them (one overlay for all of them), then does the flips it found in edge index order, skipping
-/// those whose faces an earlier flip of the same sweep changed (they are evaluated again in the next sweep). The
-/// result does not depend on the thread count.
+/// its last evaluation; when it found no ordinary flip, it evaluates the flips whose shortest geodesic left the two
+/// patches once more with the shortest path inside them (one overlay for all of them); it does the flips it found
+/// in edge index order, skipping those whose faces an earlier flip of the same sweep changed (they are evaluated
+/// again in the next sweep). The result does not depend on the thread count.
 class Improver {
 public:
     /// Starts with every edge to evaluate, or only `edges` when given.
@@ -114,7 +114,15 @@ public:
         std::vector<std::size_t> again;
         for (std::size_t k = 0; k < found.size(); ++k)
             if (found[k].wants_region) again.push_back(k);
-        if (!again.empty()) {
+        // The overlay costs a pass over T: while ordinary flips go on, the flips that want it wait for a sweep
+        // without them (evaluated again then), so that one overlay serves them all.
+        const bool ordinary = std::any_of(found.begin(), found.end(), [](const Evaluation& x) { return x.flip; });
+        if (ordinary) {
+            for (std::size_t k : again) {
+                found[k].refused = FlipRefusal::none;  // counted when it is evaluated again
+                dirty_[static_cast<std::size_t>(edges[k])] = 1;
+            }
+        } else if (!again.empty()) {
             const Overlay overlay = build_overlay(g_);
             for_each_parallel(again.size(), [&](std::size_t i, geodesic::ExactGeodesic&) {
                 Evaluation& x = found[again[i]];
