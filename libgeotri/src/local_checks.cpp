@@ -47,23 +47,29 @@ std::vector<int> faces_of_segment(const Mesh& mesh, const SurfacePoint& p, const
     return {f};
 }
 
-/// Adds the pieces of `line` to `pieces` by fine face; `end_tag` holds the tags of its first and last point.
-void add_pieces(const Mesh& mesh, const Polyline& line, std::array<int, 2> end_tag, int id,
-                std::map<int, std::vector<Piece>>& pieces) {
+using PiecesByFace = std::map<int, std::vector<Piece>>;
+
+/// Adds the pieces of `line` to `pieces` by fine face; `end_tag` holds the tags of its first and last point. With
+/// `only`, just the pieces in the faces that it holds pieces in: no others can meet them.
+void add_pieces(const Mesh& mesh, const Polyline& line, std::array<int, 2> end_tag, int id, PiecesByFace& pieces,
+                const PiecesByFace* only = nullptr) {
     const std::size_t n = line.size();
     auto tag_of = [&](std::size_t i) { return i == 0 ? end_tag[0] : (i + 1 == n ? end_tag[1] : -1); };
+    auto wanted = [&](int f) { return !only || only->count(f) != 0; };
     for (std::size_t i = 0; i + 1 < n; ++i) {
         const SurfacePoint& p = line[i];
         const SurfacePoint& q = line[i + 1];
         for (int f : faces_of_segment(mesh, p, q))
-            pieces[f].push_back({halfedge_coordinates(mesh, 3 * f, p), halfedge_coordinates(mesh, 3 * f, q),
-                                 tag_of(i), tag_of(i + 1), false, id});
+            if (wanted(f))
+                pieces[f].push_back({halfedge_coordinates(mesh, 3 * f, p), halfedge_coordinates(mesh, 3 * f, q),
+                                     tag_of(i), tag_of(i + 1), false, id});
     }
     for (std::size_t i = 0; i < n; ++i) {
         const SurfacePoint& p = line[i];
         if (p.kind != PointKind::vertex) continue;
         for (int h : mesh.outgoing_halfedges(p.vertex)) {
             const int f = Mesh::face_of(h);
+            if (!wanted(f)) continue;
             const Eigen::Vector2d x = halfedge_coordinates(mesh, 3 * f, p);
             pieces[f].push_back({x, x, tag_of(i), tag_of(i), true, id});
         }
@@ -92,11 +98,11 @@ bool pieces_meet(const Piece& s, const Piece& r, double tolerance) {
 }  // namespace
 
 std::string first_meeting(const Mesh& mesh, const Polyline& path, const std::vector<BoundingPath>& around) {
-    std::map<int, std::vector<Piece>> bounding;
-    for (std::size_t i = 0; i < around.size(); ++i)
-        add_pieces(mesh, around[i].path, {around[i].start_tag, -1}, static_cast<int>(i), bounding);
-    std::map<int, std::vector<Piece>> fresh;
+    PiecesByFace fresh;
     add_pieces(mesh, path, {0, 1}, -1, fresh);
+    PiecesByFace bounding;
+    for (std::size_t i = 0; i < around.size(); ++i)
+        add_pieces(mesh, around[i].path, {around[i].start_tag, -1}, static_cast<int>(i), bounding, &fresh);
     for (const auto& [f, list] : fresh) {
         const auto it = bounding.find(f);
         if (it == bounding.end()) continue;
