@@ -7,6 +7,7 @@
 #include <geotri/split.h>
 
 #include "parallel_propagations.h"
+#include "polyline_verdicts.h"
 
 #include <algorithm>
 #include <chrono>
@@ -255,11 +256,12 @@ std::vector<int> candidate_vertices(const CoarseMesh& coarse, const ValidationRe
 /// the overlay is built only for a trial without such violations. That is enough while there are some: an
 /// embedding of the coarse graph that keeps its rotation system (conditions 1-3) cuts T into disks by Euler's
 /// formula, so condition 4 fails alone only by rounding. `after` is trial's report, with condition 4 when it was
-/// built.
-bool lowers_violations(const GeodesicTriangulation& trial, const ValidationReport& report, ValidationReport& after) {
+/// built. `known` holds the verdicts on the polylines of the G that trial was copied from.
+bool lowers_violations(const GeodesicTriangulation& trial, const ValidationReport& report,
+                       const detail::PolylineVerdicts& known, ValidationReport& after) {
     ValidationOptions cheap;
     cheap.overlay = false;
-    after = validate(trial, cheap);
+    after = detail::validate(trial, cheap, known);
     if (cheap_count(after) > 0) return cheap_count(after) < cheap_count(report);
     add_overlay_check(trial, after);
     return cheap_count(report) > 0 || total(after) < total(report);
@@ -291,7 +293,7 @@ class Untangler {
 public:
     Untangler(GeodesicTriangulation& g, ValidationReport& report, const FlipToDelaunayOptions& options,
               FlipToDelaunayResult& result)
-        : g_(g), report_(report), result_(result) {
+        : g_(g), report_(report), result_(result), verdicts_(g, {}) {
 #ifdef _OPENMP
         threads_ = options.threads > 0 ? options.threads : omp_get_max_threads();
 #else
@@ -330,7 +332,7 @@ public:
                     } catch (const InvalidInput&) {
                         t.operations = 0;
                     }
-                    t.better = t.operations > 0 && lowers_violations(*t.g, report_, t.report);
+                    t.better = t.operations > 0 && lowers_violations(*t.g, report_, verdicts_, t.report);
                 } catch (...) {
                     t.error = std::current_exception();
                 }
@@ -341,6 +343,7 @@ public:
                 if (t.better) {
                     g_ = std::move(*t.g);
                     report_ = std::move(t.report);
+                    verdicts_ = detail::PolylineVerdicts(g_, verdicts_);
                     kept += t.operations;
                     // A collapse renumbers the coarse vertices, and with them the keys.
                     if (moves[first + i].key[0] == k_collapse) failed_.clear();
@@ -370,6 +373,7 @@ private:
     int threads_ = 1;
     std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread
     std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
+    detail::PolylineVerdicts verdicts_;    ///< condition 1 on G's polylines, for judging the trials
 };
 
 /// Untangles by single flips, where no flip helps by fork splits, then by edge collapses, then by moving vertices,

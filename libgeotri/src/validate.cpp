@@ -6,6 +6,7 @@
 
 #include "local_checks.h"
 #include "plane_segments.h"
+#include "polyline_verdicts.h"
 
 #include <algorithm>
 #include <cmath>
@@ -85,8 +86,9 @@ struct FaceSegment {
 
 class Validator {
 public:
-    Validator(const GeodesicTriangulation& g, ValidationReport& report)
-        : g_(g), mesh_(g.fine().mesh), coarse_(g.coarse()), report_(report) {}
+    Validator(const GeodesicTriangulation& g, ValidationReport& report,
+              const detail::PolylineVerdicts* known = nullptr)
+        : g_(g), mesh_(g.fine().mesh), coarse_(g.coarse()), report_(report), known_(known) {}
 
     void run(const ValidationOptions& options);
     /// Adds condition 4 to a report that run() made without the overlay.
@@ -129,6 +131,7 @@ private:
     const Mesh& mesh_;
     const CoarseMesh& coarse_;
     ValidationReport& report_;
+    const detail::PolylineVerdicts* known_;  ///< verdicts of condition 1 already known, or null
 
     std::vector<Polyline> paths_;                ///< per coarse edge index, in canonical form (empty for a deleted edge)
     std::vector<std::array<int, 2>> ends_;       ///< per coarse edge: from and to vertex of halfedge 0
@@ -229,16 +232,10 @@ void Validator::check_polyline(int e) {
     }
     path_ok_[e] = 1;
 
-    const std::string bend = detail::straightness_defect(mesh_, path);
-    if (!bend.empty()) {
-        fail(bend);
-        return;
-    }
-
-    const double length = geodesic::path_length(mesh_, path);
-    const double recorded = g_.length(OpenMesh::EdgeHandle(e));
-    if (!(std::abs(recorded - length) <= k_length_tolerance * length))
-        fail("records length " + number(recorded) + " but its polyline is " + number(length) + " long");
+    const OpenMesh::EdgeHandle handle(e);
+    const std::string* known = known_ ? known_->find(g_, handle) : nullptr;
+    const std::string defect = known ? *known : detail::shape_defect(mesh_, path, g_.length(handle));
+    if (!defect.empty()) fail(defect);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -601,5 +598,51 @@ void add_overlay_check(const GeodesicTriangulation& g, ValidationReport& report)
     if (report.overlay_checked) return;
     Validator(g, report).add_patches();
 }
+
+namespace detail {
+
+std::string shape_defect(const Mesh& mesh, const Polyline& path, double recorded_length) {
+    std::string bend = straightness_defect(mesh, path);
+    if (!bend.empty()) return bend;
+    const double length = geodesic::path_length(mesh, path);
+    if (!(std::abs(recorded_length - length) <= k_length_tolerance * length))
+        return "records length " + number(recorded_length) + " but its polyline is " + number(length) + " long";
+    return {};
+}
+
+PolylineVerdicts::PolylineVerdicts(const GeodesicTriangulation& g, const PolylineVerdicts& earlier) : kept_(g) {
+    const Mesh& mesh = g.fine().mesh;
+    for (OpenMesh::EdgeHandle e : g.coarse().edges()) {
+        const Polyline& raw = g.polyline(e);
+        if (const std::string* known = earlier.find(g, e)) {
+            verdicts_[&raw] = {g.length(e), *known};
+            continue;
+        }
+        // As Validator::prepare and check_polyline see it: canonical points, apart and on common faces.
+        if (raw.size() < 2) continue;
+        Polyline path;
+        path.reserve(raw.size());
+        for (const SurfacePoint& p : raw) path.push_back(mesh.canonical(p));
+        bool ok = true;
+        for (std::size_t i = 0; i + 1 < path.size() && ok; ++i)
+            ok = !(path[i] == path[i + 1]) && common_face(mesh, path[i], path[i + 1]) >= 0;
+        if (ok) verdicts_[&raw] = {g.length(e), shape_defect(mesh, path, g.length(e))};
+    }
+}
+
+const std::string* PolylineVerdicts::find(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const {
+    const auto it = verdicts_.find(&g.polyline(e));
+    if (it == verdicts_.end() || it->second.recorded_length != g.length(e)) return nullptr;
+    return &it->second.defect;
+}
+
+ValidationReport validate(const GeodesicTriangulation& g, const ValidationOptions& options,
+                          const PolylineVerdicts& known) {
+    ValidationReport report;
+    Validator(g, report, &known).run(options);
+    return report;
+}
+
+}  // namespace detail
 
 }  // namespace geotri

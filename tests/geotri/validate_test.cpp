@@ -13,6 +13,8 @@
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
+#include "polyline_verdicts.h"  // libgeotri/src: untangling's verdicts kept between validations
+
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -592,6 +594,47 @@ TEST(Validate, overlay_check_added_later_gives_the_full_report) {
         add_overlay_check(g, later);
         EXPECT_EQ(later.violation_count, full.violation_count);
     }
+}
+
+TEST(Validate, verdicts_kept_from_another_g_give_the_same_report) {
+    const auto fine = fine_of(test::icosphere(3));
+    const GeodesicTriangulation g = tetrahedron_on_sphere(fine);
+    const detail::PolylineVerdicts known(g, {});
+    const ValidationOptions cheap{false};
+    auto same = [&](const GeodesicTriangulation& copy) {
+        const ValidationReport plain = validate(copy, cheap), kept = detail::validate(copy, cheap, known);
+        EXPECT_EQ(kept.violation_count, plain.violation_count);
+        EXPECT_EQ(kept.violations.size(), plain.violations.size());
+        for (std::size_t k = 0; k < std::min(plain.violations.size(), kept.violations.size()); ++k)
+            EXPECT_EQ(kept.violations[k].what, plain.violations[k].what);
+        return plain;
+    };
+    EXPECT_TRUE(same(g).valid);
+
+    // A copy with one polyline bent and another reversed: both are new polylines, judged afresh.
+    GeodesicTriangulation changed = g;
+    const auto e0 = OpenMesh::EdgeHandle(0), e1 = OpenMesh::EdgeHandle(1);
+    Polyline bent = changed.polyline(e0);
+    for (std::size_t i = 1; i + 1 < bent.size(); ++i)
+        if (bent[i].kind == geodesic::PointKind::edge && bent[i].t > 0.2 && bent[i].t < 0.8) {
+            bent[i].t += 0.05;
+            break;
+        }
+    changed.set_polyline(e0, bent);
+    Polyline reversed = changed.polyline(e1);
+    std::reverse(reversed.begin(), reversed.end());
+    changed.set_polyline(e1, reversed);
+    const ValidationReport r = same(changed);
+    EXPECT_TRUE(has_violation(r, 1, {}, {0})) << describe(r);
+    EXPECT_TRUE(has_violation(r, 1, {}, {1})) << describe(r);
+
+    // Verdicts kept from the changed G, for a copy where the polylines are as in g again.
+    const detail::PolylineVerdicts from_changed(changed, known);
+    GeodesicTriangulation restored = changed;
+    restored.set_polyline(e0, g.polyline(e0));
+    restored.set_polyline(e1, g.polyline(e1));
+    EXPECT_TRUE(detail::validate(restored, cheap, from_changed).valid);
+    EXPECT_EQ(detail::validate(changed, cheap, from_changed).violation_count, r.violation_count);
 }
 
 TEST(Validate, malformed_locations_are_refused) {

@@ -1,0 +1,44 @@
+#pragma once
+// Condition 1's verdict on each polyline of a G, kept from one validation to the next. Copies of G share their
+// polylines, and an operation replaces a polyline rather than change it, so a trial copy's unchanged edges hold the
+// same polyline objects as the G it was copied from: their verdicts need not be computed again. Untangling judges
+// thousands of trial copies that differ from G in a few edges.
+
+#include <geotri/geodesic_triangulation.h>
+#include <geotri/validate.h>
+
+#include <optional>
+#include <string>
+#include <unordered_map>
+
+namespace geotri::detail {
+
+class PolylineVerdicts {
+public:
+    PolylineVerdicts() = default;
+    /// The verdicts on g's polylines, taken from `earlier` where it has them. Keeps g's polylines alive, so that
+    /// no other polyline can take the address of one of them.
+    PolylineVerdicts(const GeodesicTriangulation& g, const PolylineVerdicts& earlier);
+
+    /// Whether the polyline of g's edge e is straight and as long as recorded: empty when it is, else why not
+    /// (as validate() says it); null when it is not known here.
+    const std::string* find(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
+
+private:
+    struct Verdict {
+        double recorded_length;
+        std::string defect;
+    };
+    std::optional<GeodesicTriangulation> kept_;
+    std::unordered_map<const Polyline*, Verdict> verdicts_;
+};
+
+/// The verdict on a polyline whose points are on T, apart and pairwise on a common fine face: empty when it is
+/// straight (straightness_defect) and `recorded_length` long, else why not.
+std::string shape_defect(const geodesic::Mesh& mesh, const Polyline& path, double recorded_length);
+
+/// validate(), with the verdicts of `known` where it has them: the same report.
+ValidationReport validate(const GeodesicTriangulation& g, const ValidationOptions& options,
+                          const PolylineVerdicts& known);
+
+}  // namespace geotri::detail
