@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -110,7 +111,7 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
     propagation_options.goal_directed = true;
     propagation->propagate({from}, propagation_options);
 
-    Overlay built;
+    std::optional<Overlay> built;
     const Overlay* overlay = options.overlay;
     for (Spoke& s : spokes) {
         s.path = propagation->shortest_path(g.location(s.to));
@@ -122,8 +123,9 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
         if (why.empty()) continue;
         if (!options.region_fallback) return why;
         if (!overlay) {
-            built = build_overlay(g);
-            overlay = &built;
+            std::optional<Overlay>& kept = options.keep_overlay ? *options.keep_overlay : built;
+            kept = build_overlay(g);
+            overlay = &*kept;
         }
         PatchRegion::Path inside;
         try {

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -162,19 +163,34 @@ SurfacePoint inside_patch(const GeodesicTriangulation& g, const Overlay& overlay
 void check_every_split(const GeodesicTriangulation& g, const std::string& name, int stride = 1) {
     int edges_done = 0, faces_done = 0, region = 0;
     int edges_tried = 0, faces_tried = 0;
+    // The edge splits once more, on copies that share one kept overlay of g: the same results.
+    std::optional<Overlay> kept;
+    int edge_region = 0;
+    SplitOptions keeping;
+    keeping.keep_overlay = &kept;
     for (auto e : g.coarse().edges()) {
         if (e.idx() % stride != 0) continue;
         ++edges_tried;
-        GeodesicTriangulation copy = g;
+        GeodesicTriangulation copy = g, again = g;
         const SplitResult r = split_edge(copy, e, 0.5);
+        keeping.overlay = kept ? &*kept : nullptr;
+        const SplitResult r_again = split_edge(again, e, 0.5, keeping);
+        EXPECT_EQ(r_again.done, r.done);
+        EXPECT_EQ(r_again.region_paths, r.region_paths);
         if (!r.done) {
             std::cout << "[ refused  ] " << r.reason << "\n";
             continue;
         }
+        for (auto x : copy.coarse().edges()) EXPECT_EQ(again.polyline(x), copy.polyline(x));
         ++edges_done;
         region += r.region_paths;
+        edge_region += r.region_paths;
         SCOPED_TRACE("edge " + std::to_string(e.idx()));
         expect_valid_with_area(copy);
+    }
+    if (edge_region > 0) {
+        ASSERT_TRUE(kept.has_value());
+        EXPECT_EQ(kept->triangles, build_overlay(g).triangles);
     }
     const Overlay overlay = build_overlay(g);
     for (auto f : g.coarse().faces()) {

@@ -5,6 +5,7 @@
 
 #include <geotri/geodesic_triangulation.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct SplitOptions {
     bool region_fallback = true;
     /// The overlay of this same G for the fallback; built when needed if null.
     const Overlay* overlay = nullptr;
+    /// When the overlay is built here, it is kept in this, for the caller's later splits of the same G (a caller
+    /// that tries several splits on copies of one G builds it once).
+    std::optional<Overlay>* keep_overlay = nullptr;
 };
 
 struct SplitResult {
