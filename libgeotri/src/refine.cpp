@@ -262,25 +262,30 @@ private:
     /// Does `split` (one of split_edge() or split_face() on the G it is given) on a copy of G, then the flips around
     /// the new vertex, and keeps the result when the corners of the faces at the new vertex are no smaller than
     /// `floor` (radians). A split that makes a worse corner than the one it mends is what lets refinement chase its
-    /// own tail. Returns whether G changed.
+    /// own tail. Says whether G changed, or else whether the split itself was refused or made and then refused.
+    enum class Tried { kept, refused_split, refused_corners };
     template <class Split>
-    bool try_split(Split split, double floor, int& counter) {
+    Tried try_split(Split split, double floor, int& counter) {
         GeodesicTriangulation trial = g_;
         const SplitResult done = split(trial);
+        if (!done.done) {
+            ++result_.refused_splits;
+            return Tried::refused_split;
+        }
         FlipToDelaunayResult flips;
-        if (done.done && options_.flip) improve_around(trial, link_edges(trial.coarse(), done.vertex), flip_options_, flips);
+        if (options_.flip) improve_around(trial, link_edges(trial.coarse(), done.vertex), flip_options_, flips);
         // The flips after the split can reach beyond the new vertex's faces: the smallest corner of all of G must
         // stay above keep_above_ too.
-        if (!done.done || smallest_corner_around(trial, done.vertex) < floor ||
+        if (smallest_corner_around(trial, done.vertex) < floor ||
             (keep_above_ > 0.0 && smallest_changed_corner(trial) < keep_above_)) {
             ++result_.refused_splits;
-            return false;
+            return Tried::refused_corners;
         }
         replace_g(std::move(trial));
         ++counter;
         ++new_vertices_;
         result_.flips += flips.improve_flips;
-        return true;
+        return Tried::kept;
     }
 
     static double smallest_corner_of(const GeodesicTriangulation& g) {
@@ -326,15 +331,22 @@ private:
     }
 
     /// Splits e at its midpoint (or, when that is refused, at 0.4 or 0.6 of it); false when every one is refused.
-    bool split_edge_somewhere(EdgeHandle e, bool region_fallback = true) {
-        const double floor = std::max(floor_at(e), keep_above_);
+    /// `unsplit`, when given, gets the fractions where the split itself was refused.
+    bool split_edge_somewhere(EdgeHandle e, bool region_fallback = true,
+                              std::vector<std::pair<EdgeHandle, double>>* unsplit = nullptr) {
         for (double fraction : {0.5, 0.4, 0.6}) {
-            auto split = [&](GeodesicTriangulation& trial) {
-                return split_edge(trial, e, fraction, split_options(region_fallback));
-            };
-            if (try_split(split, floor, result_.edge_splits)) return true;
+            const Tried tried = split_edge_at(e, fraction, region_fallback);
+            if (tried == Tried::kept) return true;
+            if (tried == Tried::refused_split && unsplit) unsplit->emplace_back(e, fraction);
         }
         return false;
+    }
+
+    Tried split_edge_at(EdgeHandle e, double fraction, bool region_fallback) {
+        auto split = [&](GeodesicTriangulation& trial) {
+            return split_edge(trial, e, fraction, split_options(region_fallback));
+        };
+        return try_split(split, std::max(floor_at(e), keep_above_), result_.edge_splits);
     }
 
     /// The circumcentre of f, found on T by walking straight from a corner of f in the direction that the
@@ -475,9 +487,13 @@ private:
         std::array<EdgeHandle, 3> edges{coarse.edge_handle(h[0]), coarse.edge_handle(h[1]), coarse.edge_handle(h[2])};
         std::stable_sort(edges.begin(), edges.end(),
                          [&](EdgeHandle a, EdgeHandle b) { return g_.length(a) > g_.length(b); });
-        for (bool region_fallback : {false, true})
-            for (EdgeHandle e : edges)
-                if (split_edge_somewhere(e, region_fallback)) return true;
+        std::vector<std::pair<EdgeHandle, double>> unsplit;
+        for (EdgeHandle e : edges)
+            if (split_edge_somewhere(e, false, &unsplit)) return true;
+        // Again with geodesics inside the patches where the shortest ones left them. A split that was made and
+        // then refused for its corners used no such fallback: it would be refused again, so it is not tried.
+        for (const auto& [e, fraction] : unsplit)
+            if (split_edge_at(e, fraction, true) == Tried::kept) return true;
         return false;
     }
 
@@ -503,10 +519,13 @@ private:
             auto split = [&](GeodesicTriangulation& trial) {
                 return split_face(trial, candidate, p, split_options(false));
             };
-            if (try_split(split, floor, result_.face_splits)) {
+            const Tried tried = try_split(split, floor, result_.face_splits);
+            if (tried == Tried::kept) {
                 if (p.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(p.vertex);
                 return true;
             }
+            // The split was made, so p is strictly inside this patch and in no other.
+            if (tried == Tried::refused_corners) return false;
         }
         return false;
     }
