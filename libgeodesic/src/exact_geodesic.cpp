@@ -120,6 +120,7 @@ private:
     SurfacePoint point_on_halfedge(int h, double x) const;
 
     void push_queue(double key, int item);
+    void push_vertex(int v);
     double estimate_left(const Eigen::Vector3d& x) const;
     double estimate_left(const Window& w) const;
     double vertex_key(int v) const;
@@ -144,6 +145,8 @@ private:
     std::vector<unsigned char> watched_;        // per halfedge
     double max_distance_ = k_infinity;
     std::vector<Eigen::Vector3d> goals_;  // goal-directed: the stop points' positions; empty otherwise
+    std::vector<unsigned char> goal_settled_;  // per goal: its stop point is settled, so it no longer draws the search
+    std::vector<double> queued_key_;  // per vertex: the key of its latest queue entry (keys change with the goals)
 };
 
 ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
@@ -156,6 +159,7 @@ ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
         pseudo_source_[v] = emits;
     }
     distance_.assign(nv, k_infinity);
+    queued_key_.assign(nv, k_infinity);
     predecessor_.assign(nv, Predecessor{});
     first_window_.assign(mesh.num_halfedges(), -1);
     watched_.assign(mesh.num_halfedges(), 0);
@@ -192,16 +196,26 @@ void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor prede
     if (distance_[v] == k_infinity) touched_vertices_.push_back(v);
     distance_[v] = distance;
     predecessor_[v] = predecessor;
-    if (pseudo_source_[v] && distance <= max_distance_) push_queue(vertex_key(v), -1 - v);
+    if (pseudo_source_[v] && distance <= max_distance_) push_vertex(v);
+}
+
+void ExactGeodesic::Impl::push_vertex(int v) {
+    queued_key_[v] = vertex_key(v);
+    push_queue(queued_key_[v], -1 - v);
 }
 
 double ExactGeodesic::Impl::estimate_left(const Eigen::Vector3d& x) const {
     if (goals_.empty()) return 0.0;
     double nearest = k_infinity;
-    for (const Eigen::Vector3d& goal : goals_) nearest = std::min(nearest, (goal - x).norm());
+    for (std::size_t i = 0; i < goals_.size(); ++i)
+        if (!goal_settled_[i]) nearest = std::min(nearest, (goals_[i] - x).norm());
     return nearest;
 }
 
+// Only the goals whose stop points are not settled count: the search then heads for those (a face split's three
+// corners: the search stops spreading towards the nearest once it is settled). A key made before a goal was settled
+// is smaller than it would be now, so every queued key stays a lower bound of any path through its item to any stop
+// point not yet settled, which is all that the stop test needs.
 double ExactGeodesic::Impl::estimate_left(const Window& w) const {
     // The least straight-line distance from the window's part of its edge to a goal: with the window's least
     // distance, a lower bound of any path through it to a goal, since a path is never shorter than a straight line.
@@ -211,7 +225,9 @@ double ExactGeodesic::Impl::estimate_left(const Window& w) const {
     const Eigen::Vector3d& tail = mesh_.position(mesh_.tail(h));
     const Eigen::Vector3d along = (mesh_.position(mesh_.head(h)) - tail) / length;
     double nearest = k_infinity;
-    for (const Eigen::Vector3d& goal : goals_) {
+    for (std::size_t i = 0; i < goals_.size(); ++i) {
+        if (goal_settled_[i]) continue;
+        const Eigen::Vector3d& goal = goals_[i];
         const double x = std::clamp((goal - tail).dot(along), w.b0, w.b1);
         nearest = std::min(nearest, (goal - (tail + x * along)).norm());
     }
@@ -727,6 +743,7 @@ bool ExactGeodesic::Impl::all_stops_settled(double key) {
             for (const auto& [v, straight] : stop.corners) estimate = std::min(estimate, distance_[v] + straight);
         }
         stop.settled = estimate <= key;
+        if (stop.settled && !goals_.empty()) goal_settled_[static_cast<std::size_t>(&stop - stops_.data())] = 1;
         all = all && stop.settled;
     }
     return all;
@@ -748,12 +765,13 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     std::sort(watches_.begin(), watches_.end());
     if (options.goal_directed && !std::isfinite(max_distance_))
         for (const StopPoint& stop : stops_) goals_.push_back(mesh_.point(stop.point));
+    goal_settled_.assign(goals_.size(), 0);
 
     for (int k = 0; k < static_cast<int>(sources_.size()); ++k) {
         const SurfacePoint& s = sources_[k];
         if (s.kind == PointKind::vertex) {
             relax_vertex(s.vertex, 0.0, {Via::source, k});
-            if (!pseudo_source_[s.vertex]) push_queue(vertex_key(s.vertex), -1 - s.vertex);
+            if (!pseudo_source_[s.vertex]) push_vertex(s.vertex);
         } else {
             seed_from_point(s, k);
         }
@@ -781,7 +799,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             propagate_window(item);
         } else {
             const int v = -1 - item;
-            if (key != vertex_key(v)) continue;  // superseded by a shorter distance
+            if (key != queued_key_[v]) continue;  // superseded by a shorter distance
             if (distance_[v] == 0.0) {
                 if (std::find(emitted_at_zero.begin(), emitted_at_zero.end(), v) != emitted_at_zero.end()) continue;
                 emitted_at_zero.push_back(v);
