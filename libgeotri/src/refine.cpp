@@ -342,6 +342,7 @@ private:
         return false;
     }
 
+    /// One try of split_edge_somewhere(): e split at `fraction`.
     Tried split_edge_at(EdgeHandle e, double fraction, bool region_fallback) {
         auto split = [&](GeodesicTriangulation& trial) {
             return split_edge(trial, e, fraction, split_options(region_fallback));
