@@ -21,7 +21,8 @@ public:
     PolylineVerdicts(const GeodesicTriangulation& g, const PolylineVerdicts& earlier);
 
     /// Whether the polyline of g's edge e is straight and as long as recorded: empty when it is, else why not
-    /// (as validate() says it); null when it is not known here.
+    /// (as validate() says it); null when it is not known here. Only polylines whose points are apart and
+    /// pairwise on a common fine face are known.
     const std::string* find(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
 
 private:

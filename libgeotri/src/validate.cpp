@@ -220,7 +220,10 @@ void Validator::check_polyline(int e) {
         fail("does not end at the location of coarse vertex " + std::to_string(ends_[e][1]));
         return;
     }
-    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    // A known verdict is only kept for a polyline whose points are apart and pairwise on a common fine face.
+    const OpenMesh::EdgeHandle handle(e);
+    const std::string* known = known_ ? known_->find(g_, handle) : nullptr;
+    for (std::size_t i = 0; i + 1 < path.size() && !known; ++i) {
         if (path[i] == path[i + 1]) {
             fail("repeats point " + std::to_string(i));
             return;
@@ -232,8 +235,6 @@ void Validator::check_polyline(int e) {
     }
     path_ok_[e] = 1;
 
-    const OpenMesh::EdgeHandle handle(e);
-    const std::string* known = known_ ? known_->find(g_, handle) : nullptr;
     const std::string defect = known ? *known : detail::shape_defect(mesh_, path, g_.length(handle));
     if (!defect.empty()) fail(defect);
 }
