@@ -204,6 +204,10 @@ void ExactGeodesic::Impl::push_vertex(int v) {
     push_queue(queued_key_[v], -1 - v);
 }
 
+// Only the goals whose stop points are not settled count: the search then heads for those (a face split's three
+// corners: the search stops spreading towards the nearest once it is settled). A key made before a goal was settled
+// is smaller than it would be now, so every queued key stays a lower bound of any path through its item to any stop
+// point not yet settled, which is all that the stop test needs.
 double ExactGeodesic::Impl::estimate_left(const Eigen::Vector3d& x) const {
     if (goals_.empty()) return 0.0;
     double nearest = k_infinity;
@@ -212,10 +216,6 @@ double ExactGeodesic::Impl::estimate_left(const Eigen::Vector3d& x) const {
     return nearest;
 }
 
-// Only the goals whose stop points are not settled count: the search then heads for those (a face split's three
-// corners: the search stops spreading towards the nearest once it is settled). A key made before a goal was settled
-// is smaller than it would be now, so every queued key stays a lower bound of any path through its item to any stop
-// point not yet settled, which is all that the stop test needs.
 double ExactGeodesic::Impl::estimate_left(const Window& w) const {
     // The least straight-line distance from the window's part of its edge to a goal: with the window's least
     // distance, a lower bound of any path through it to a goal, since a path is never shorter than a straight line.

@@ -57,6 +57,16 @@ int edge_key(const Mesh& mesh, int a, int b) {
     return edge_key(mesh, h >= 0 ? h : mesh.find_halfedge(b, a));
 }
 
+/// Empty when the consecutive points of `path` are apart and share a fine face, else the first pair that does not.
+std::string points_defect(const Mesh& mesh, const Polyline& path) {
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+        if (path[i] == path[i + 1]) return "repeats point " + std::to_string(i);
+        if (common_face(mesh, path[i], path[i + 1]) < 0)
+            return "has points " + std::to_string(i) + " and " + std::to_string(i + 1) + " on no common fine face";
+    }
+    return {};
+}
+
 /// A point that takes part in condition 3: point `index` of the polyline of coarse edge `feature` (feature < number
 /// of edges), or the location of coarse vertex `feature - number of edges` (index 0).
 struct Item {
@@ -223,13 +233,10 @@ void Validator::check_polyline(int e) {
     // A known verdict is only kept for a polyline whose points are apart and pairwise on a common fine face.
     const OpenMesh::EdgeHandle handle(e);
     const std::string* known = known_ ? known_->find(g_, handle) : nullptr;
-    for (std::size_t i = 0; i + 1 < path.size() && !known; ++i) {
-        if (path[i] == path[i + 1]) {
-            fail("repeats point " + std::to_string(i));
-            return;
-        }
-        if (common_face(mesh_, path[i], path[i + 1]) < 0) {
-            fail("has points " + std::to_string(i) + " and " + std::to_string(i + 1) + " on no common fine face");
+    if (!known) {
+        const std::string apart = points_defect(mesh_, path);
+        if (!apart.empty()) {
+            fail(apart);
             return;
         }
     }
@@ -624,10 +631,7 @@ PolylineVerdicts::PolylineVerdicts(const GeodesicTriangulation& g, const Polylin
         Polyline path;
         path.reserve(raw.size());
         for (const SurfacePoint& p : raw) path.push_back(mesh.canonical(p));
-        bool ok = true;
-        for (std::size_t i = 0; i + 1 < path.size() && ok; ++i)
-            ok = !(path[i] == path[i + 1]) && common_face(mesh, path[i], path[i + 1]) >= 0;
-        if (ok) verdicts_[&raw] = {g.length(e), shape_defect(mesh, path, g.length(e))};
+        if (points_defect(mesh, path).empty()) verdicts_[&raw] = {g.length(e), shape_defect(mesh, path, g.length(e))};
     }
 }
 
