@@ -355,8 +355,8 @@ private:
     struct Centre {
         SurfacePoint point;
         double radius;
-        HalfedgeHandle corner;  ///< the walk started at this halfedge's from-vertex, inside f's corner there
-        Polyline walk;          ///< the straight geodesic from that corner to the centre
+        HalfedgeHandle corner;    ///< the walk started at this halfedge's from-vertex, inside f's corner there
+        double layout_direction;  ///< the walk's direction in f's intrinsic layout, from the corner's first side
     };
     std::optional<Centre> circumcentre(FaceHandle f) const {
         const CoarseMesh& coarse = g_.coarse();
@@ -365,7 +365,7 @@ private:
         for (std::size_t i = 0; i < 3; ++i) length[i] = g_.length(coarse.edge_handle(h[i]));
         // From the corner where the circumcentre's direction lies deepest inside the corner.
         int best = -1;
-        double best_margin = 0.0, best_direction = 0.0, best_radius = 0.0;
+        double best_margin = 0.0, best_direction = 0.0, best_radius = 0.0, best_phi = 0.0;
         for (std::size_t i = 0; i < 3; ++i) {
             const double ab = length[i], bc = length[(i + 1) % 3], ca = length[(i + 2) % 3];
             const double cosine = (ab * ab + ca * ca - bc * bc) / (2.0 * ab * ca);
@@ -381,6 +381,7 @@ private:
                 best_margin = margin;
                 best_direction = detail::start_direction(g_, h[i]) + phi * corner / layout_angle;
                 best_radius = std::hypot(ux, uy);
+                best_phi = phi;
             }
         }
         // A nearly flat triangle's circumcentre is far away and of no use: its longest edge is split instead.
@@ -391,7 +392,7 @@ private:
         const StraightGeodesicResult walk =
             trace_straight_geodesic(g_.fine().mesh, start, std::fmod(best_direction, theta), best_radius);
         if (walk.stopped_at_boundary) return std::nullopt;
-        return Centre{walk.end, best_radius, h[static_cast<std::size_t>(best)], walk.path};
+        return Centre{walk.end, best_radius, h[static_cast<std::size_t>(best)], best_phi};
     }
 
     /// Takes out a vertex of the G given at an end of f's shortest edge (of the two, the one whose removal gives
@@ -483,7 +484,7 @@ private:
             if (const std::optional<int> cone = curved_vertex_near(centre->point, centre->radius)) {
                 if (insert_in_one_of(around, SurfacePoint::at_vertex(*cone), floor)) return true;
             }
-            if (insert_in_one_of(patch_first(around, *centre), centre->point, floor)) return true;
+            if (insert_in_one_of(centre_patches(f, *centre), centre->point, floor)) return true;
         }
         std::array<EdgeHandle, 3> edges{coarse.edge_handle(h[0]), coarse.edge_handle(h[1]), coarse.edge_handle(h[2])};
         std::stable_sort(edges.begin(), edges.end(),
@@ -498,19 +499,70 @@ private:
         return false;
     }
 
-    /// `around` (f, then its neighbours) with the face whose patch likely holds the centre first: the neighbour
-    /// across the side opposite the walk's corner when the walk meets that side, else f. At most one patch holds
-    /// the centre strictly inside, so the order changes nothing but the refused splits tried before that one: each
-    /// costs a propagation, and the circumcentres of skinny triangles mostly lie across their longest side.
-    std::vector<FaceHandle> patch_first(std::vector<FaceHandle> around, const Centre& centre) const {
+    /// The coarse face where a straight walk of `distance` from corner `corner` ends, `direction` radians from the
+    /// corner's first side, walked across the intrinsic layouts of the coarse triangles (their geodesic lengths
+    /// only) unfolded one after the other; invalid when the walk leaves through a boundary or goes on too long.
+    /// A guess of the patch that holds the walk's end on T: the layouts ignore the curvature inside the patches.
+    FaceHandle layout_walk(HalfedgeHandle corner, double direction, double distance) const {
         const CoarseMesh& coarse = g_.coarse();
-        const HalfedgeHandle opposite_side = coarse.next_halfedge_handle(centre.corner);
-        if (detail::first_meeting(g_.fine().mesh, centre.walk, {{g_.path(opposite_side), -1, "y-z"}}).empty())
-            return around;
-        const FaceHandle across = coarse.face_handle(coarse.opposite_halfedge_handle(opposite_side));
-        const auto it = std::find(around.begin(), around.end(), across);
-        if (it != around.end()) std::rotate(around.begin(), it, it + 1);
-        return around;
+        auto third = [&](HalfedgeHandle e, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+            // The corner opposite e = (a, b) in e's face, on the left of a -> b.
+            const double ab = (b - a).norm(), bc = g_.length(coarse.edge_handle(coarse.next_halfedge_handle(e))),
+                         ca = g_.length(coarse.edge_handle(coarse.prev_halfedge_handle(e)));
+            const double x = (ab * ab + ca * ca - bc * bc) / (2.0 * ab), y = std::sqrt(std::max(0.0, ca * ca - x * x));
+            const Eigen::Vector2d u = (b - a) / ab;
+            return Eigen::Vector2d(a + x * u + y * Eigen::Vector2d(-u.y(), u.x()));
+        };
+        const Eigen::Vector2d origin(0.0, 0.0), end(distance * std::cos(direction), distance * std::sin(direction));
+        HalfedgeHandle entry = corner;  // a halfedge of the current face; in the first face, the corner's first side
+        Eigen::Vector2d a = origin, b(g_.length(coarse.edge_handle(corner)), 0.0);
+        for (int step = 0; step < 64; ++step) {
+            const Eigen::Vector2d c = third(entry, a, b);
+            // Leaves through b -> c or c -> a (never back through the entry side), at the first crossing.
+            HalfedgeHandle exit;
+            Eigen::Vector2d exit_from, exit_to;
+            double first = 1.0;
+            const std::array<std::pair<Eigen::Vector2d, Eigen::Vector2d>, 2> sides{{{b, c}, {c, a}}};
+            for (std::size_t k = 0; k < 2; ++k) {
+                const auto& [p, q] = sides[k];
+                const Eigen::Vector2d d = end - origin, e = q - p;
+                const double denominator = detail::cross(d, e);
+                if (denominator == 0.0) continue;
+                const double along = detail::cross(p - origin, e) / denominator;  // on the walk
+                const double at = detail::cross(p - origin, d) / denominator;     // on the side
+                if (along > 1e-12 && along < first && at >= 0.0 && at <= 1.0) {
+                    first = along;
+                    exit = k == 0 ? coarse.next_halfedge_handle(entry) : coarse.prev_halfedge_handle(entry);
+                    exit_from = p;
+                    exit_to = q;
+                }
+            }
+            if (!exit.is_valid()) return coarse.face_handle(entry);
+            entry = coarse.opposite_halfedge_handle(exit);
+            if (coarse.is_boundary(entry)) return FaceHandle();
+            a = exit_to;
+            b = exit_from;
+        }
+        return FaceHandle();
+    }
+
+    /// The faces whose patches may hold f's circumcentre, the likeliest first: where layout_walk() ends and its
+    /// neighbours, then f and its neighbours.
+    std::vector<FaceHandle> centre_patches(FaceHandle f, const Centre& centre) const {
+        const CoarseMesh& coarse = g_.coarse();
+        std::vector<FaceHandle> faces;
+        auto add_with_neighbours = [&](FaceHandle x) {
+            if (!x.is_valid()) return;
+            if (std::find(faces.begin(), faces.end(), x) == faces.end()) faces.push_back(x);
+            for (HalfedgeHandle h : coarse.fh_range(x)) {
+                const FaceHandle other = coarse.face_handle(coarse.opposite_halfedge_handle(h));
+                if (other.is_valid() && std::find(faces.begin(), faces.end(), other) == faces.end())
+                    faces.push_back(other);
+            }
+        };
+        add_with_neighbours(layout_walk(centre.corner, centre.layout_direction, centre.radius));
+        add_with_neighbours(f);
+        return faces;
     }
 
     /// Splits the first of `faces` whose patch holds p strictly inside, with no new corner below `floor`; false
