@@ -261,9 +261,11 @@ private:
 
     /// Does `split` (one of split_edge() or split_face() on the G it is given) on a copy of G, then the flips around
     /// the new vertex, and keeps the result when the corners of the faces at the new vertex are no smaller than
-    /// `floor` (radians). A split that makes a worse corner than the one it mends is what lets refinement chase its
-    /// own tail. Says whether G changed, or else whether the split itself was refused or made and then refused.
-    enum class Tried { kept, refused_split, refused_corners };
+    /// `floor` (radians) and its edges no shorter than the shortest edge that refinement still refines. A split
+    /// that makes a worse corner than the one it mends is what lets refinement chase its own tail; one that puts
+    /// the new vertex next to another makes triangles too small to mend. Says whether G changed, or else whether
+    /// the split itself was refused or made and then refused.
+    enum class Tried { kept, refused_split, refused_shape };
     template <class Split>
     Tried try_split(Split split, double floor, int& counter) {
         GeodesicTriangulation trial = g_;
@@ -276,10 +278,13 @@ private:
         if (options_.flip) improve_around(trial, link_edges(trial.coarse(), done.vertex), flip_options_, flips);
         // The flips after the split can reach beyond the new vertex's faces: the smallest corner of all of G must
         // stay above keep_above_ too.
-        if (smallest_corner_around(trial, done.vertex) < floor ||
+        double shortest_new = std::numeric_limits<double>::infinity();
+        for (HalfedgeHandle h : trial.coarse().voh_range(done.vertex))
+            shortest_new = std::min(shortest_new, trial.length(trial.coarse().edge_handle(h)));
+        if (shortest_new < min_edge_ || smallest_corner_around(trial, done.vertex) < floor ||
             (keep_above_ > 0.0 && smallest_changed_corner(trial) < keep_above_)) {
             ++result_.refused_splits;
-            return Tried::refused_corners;
+            return Tried::refused_shape;
         }
         replace_g(std::move(trial));
         ++counter;
@@ -493,7 +498,7 @@ private:
         for (EdgeHandle e : edges)
             if (split_edge_somewhere(e, false, &unsplit)) return true;
         // Again with geodesics inside the patches where the shortest ones left them. A split that was made and
-        // then refused for its corners used no such fallback: it would be refused again, so it is not tried.
+        // then refused for its shape used no such fallback: it would be refused again, so it is not tried.
         for (const auto& [e, fraction] : unsplit)
             if (split_edge_at(e, fraction, true) == Tried::kept) return true;
         return false;
@@ -578,7 +583,7 @@ private:
                 return true;
             }
             // The split was made, so p is strictly inside this patch and in no other.
-            if (tried == Tried::refused_corners) return false;
+            if (tried == Tried::refused_shape) return false;
         }
         return false;
     }

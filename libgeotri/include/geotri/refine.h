@@ -20,8 +20,9 @@ struct RefineOptions {
     /// Corners at points of T whose cone angle is below three times this are exempt: a vertex of degree three or
     /// more there must have a smaller corner.
     double min_angle_deg = 0.0;
-    /// Do not refine a triangle whose shortest edge is shorter than this (0: a tenth of the mean edge length of T), so
-    /// that refinement does not chase a needle of T with ever smaller triangles.
+    /// Do not refine a triangle whose shortest edge is shorter than this (0: a tenth of the mean edge length of T),
+    /// nor make a new edge shorter than it, so that refinement does not chase a needle of T with ever smaller
+    /// triangles.
     double min_edge_length = 0.0;
     bool flip = true;            ///< flip towards geodesic Delaunay (angle criterion) around every new vertex
     /// While raising the minimum angle, a vertex of the G given (not one that refinement added) at an end of the
