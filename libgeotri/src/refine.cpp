@@ -573,10 +573,9 @@ private:
     /// Splits the first of `faces` whose patch holds p strictly inside, with no new corner below `floor`; false
     /// when none does.
     bool insert_in_one_of(const std::vector<FaceHandle>& faces, const SurfacePoint& p, double floor) {
-        for (FaceHandle candidate : faces) {
-            auto split = [&](GeodesicTriangulation& trial) {
-                return split_face(trial, candidate, p, split_options(false));
-            };
+        SplitOptions options = split_options(false);
+        for (std::size_t i = 0; i < faces.size(); ++i) {
+            auto split = [&](GeodesicTriangulation& trial) { return split_face(trial, faces[i], p, options); };
             const Tried tried = try_split(split, floor, result_.face_splits);
             if (tried == Tried::kept) {
                 if (p.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(p.vertex);
@@ -584,6 +583,20 @@ private:
             }
             // The split was made, so p is strictly inside this patch and in no other.
             if (tried == Tried::refused_shape) return false;
+            // The first patch tried mostly holds p. When it does not, one propagation from p towards the corners
+            // of all the others serves the tries left: a try in a patch that does not hold p is refused as soon
+            // as its first geodesic arrives outside the patch's corner (lucy_100k at 25 degrees: 17.3 -> 13.8 s).
+            if (i == 0 && faces.size() > 1) {
+                geodesic::PropagationOptions towards;
+                for (std::size_t j = 1; j < faces.size(); ++j)
+                    for (VertexHandle v : g_.coarse().fv_range(faces[j]))
+                        if (std::find(towards.stop_points.begin(), towards.stop_points.end(), g_.location(v)) ==
+                            towards.stop_points.end())
+                            towards.stop_points.push_back(g_.location(v));
+                towards.goal_directed = true;
+                propagation_.propagate({g_.fine().mesh.canonical(p)}, towards);
+                options.propagated = true;
+            }
         }
         return false;
     }

@@ -106,10 +106,14 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
         own = std::make_unique<geodesic::ExactGeodesic>(mesh);
         propagation = own.get();
     }
-    geodesic::PropagationOptions propagation_options;
-    for (const Spoke& s : spokes) propagation_options.stop_points.push_back(g.location(s.to));
-    propagation_options.goal_directed = true;
-    propagation->propagate({from}, propagation_options);
+    if (options.propagated && !options.propagation)
+        throw InvalidInput("split: SplitOptions::propagated without a propagation");
+    if (!options.propagated) {
+        geodesic::PropagationOptions propagation_options;
+        for (const Spoke& s : spokes) propagation_options.stop_points.push_back(g.location(s.to));
+        propagation_options.goal_directed = true;
+        propagation->propagate({from}, propagation_options);
+    }
 
     std::optional<Overlay> built;
     const Overlay* overlay = options.overlay;

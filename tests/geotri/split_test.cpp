@@ -2,6 +2,7 @@
 // real meshes, checked with validate() (with the overlay and the patch areas) after every split.
 
 #include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
 #include <geotri/decimate.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/flip_to_delaunay.h>
@@ -197,7 +198,30 @@ void check_every_split(const GeodesicTriangulation& g, const std::string& name, 
         if (f.idx() % stride != 0) continue;
         ++faces_tried;
         GeodesicTriangulation copy = g;
-        const SplitResult r = split_face(copy, f, inside_patch(g, overlay, f.idx()));
+        const SurfacePoint p = inside_patch(g, overlay, f.idx());
+        const SplitResult r = split_face(copy, f, p);
+        // Once more from a propagation made beforehand towards the corners of f and of a neighbour, as refinement
+        // tries one point in several patches: the same split (its geodesics equal to rounding: another order of
+        // propagation), and the neighbour refuses the point.
+        const auto neighbour = g.coarse().opposite_face_handle(g.coarse().halfedge_handle(f));
+        geodesic::ExactGeodesic propagation(g.fine().mesh);
+        geodesic::PropagationOptions towards;
+        towards.goal_directed = true;
+        for (auto x : {f, neighbour})
+            for (auto v : g.coarse().fv_range(x)) towards.stop_points.push_back(g.location(v));
+        propagation.propagate({g.fine().mesh.canonical(p)}, towards);
+        SplitOptions shared;
+        shared.propagation = &propagation;
+        shared.propagated = true;
+        GeodesicTriangulation again = g, other = g;
+        EXPECT_EQ(split_face(again, f, p, shared).done, r.done);
+        if (r.done) {
+            for (auto x : copy.coarse().edges()) {
+                EXPECT_EQ(again.polyline(x).size(), copy.polyline(x).size());
+                EXPECT_NEAR(again.length(x), copy.length(x), 1e-12 * copy.length(x));
+            }
+        }
+        EXPECT_FALSE(split_face(other, neighbour, p, shared).done);
         if (!r.done) {
             std::cout << "[ refused  ] " << r.reason << "\n";
             continue;

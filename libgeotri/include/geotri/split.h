@@ -27,6 +27,10 @@ struct SplitOptions {
     /// When the overlay is built here, it is kept in this, for the caller's later splits of the same G (a caller
     /// that tries several splits on copies of one G builds it once).
     std::optional<Overlay>* keep_overlay = nullptr;
+    /// `propagation` already holds a goal-directed propagation from the split point (in canonical form) whose stop
+    /// points include every coarse vertex that the split joins it to: the split uses it instead of propagating
+    /// again. For a caller that tries one point in several patches.
+    bool propagated = false;
 };
 
 struct SplitResult {
