@@ -129,6 +129,7 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
                            : Eigen::Vector2d(0.0, back.norm());
         cone_angle_[tail(h)] += corner_angle_[h];
     }
+    for (int f = 0; f < num_faces(); ++f) total_area_ += face_area(f);
 
     // Polar angles: walk each vertex's fan counter-clockwise (h -> twin(prev(h))) from its first halfedge.
     polar_angle_.assign(nh, std::numeric_limits<double>::quiet_NaN());
@@ -163,12 +164,6 @@ int Mesh::find_halfedge(int from, int to) const {
 double Mesh::face_area(int f) const {
     const auto& t = triangles_[f];
     return 0.5 * (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]).norm();
-}
-
-double Mesh::total_area() const {
-    double sum = 0.0;
-    for (int f = 0; f < num_faces(); ++f) sum += face_area(f);
-    return sum;
 }
 
 Eigen::Vector3d Mesh::point(const SurfacePoint& p) const {

@@ -66,7 +66,8 @@ public:
     double polar_angle(int h) const { return polar_angle_[h]; }
     int num_boundary_halfedges() const { return num_boundary_halfedges_; }
     double face_area(int f) const;
-    double total_area() const;
+    /// The sum of the face areas (computed once: validation asks for it on every check).
+    double total_area() const { return total_area_; }
     /// Diagonal of the bounding box: the scale for tolerances that must not depend on units.
     double size() const { return size_; }
 
@@ -94,6 +95,7 @@ private:
     std::vector<double> polar_angle_;
     int num_boundary_halfedges_ = 0;
     double size_ = 0.0;
+    double total_area_ = 0.0;
 };
 
 }  // namespace geotri::geodesic
