@@ -98,6 +98,8 @@ std::string check_spoke(const GeodesicTriangulation& g, const Spoke& spoke, cons
 /// all of G.
 std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from, std::vector<Spoke>& spokes,
                         const SplitOptions& options, bool checked) {
+    if (options.propagated && !options.propagation)
+        throw InvalidInput("split: SplitOptions::propagated without a propagation");
     const Mesh& mesh = g.fine().mesh;
     const double theta = cone_angle(mesh, from);
     std::unique_ptr<geodesic::ExactGeodesic> own;
@@ -106,8 +108,6 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
         own = std::make_unique<geodesic::ExactGeodesic>(mesh);
         propagation = own.get();
     }
-    if (options.propagated && !options.propagation)
-        throw InvalidInput("split: SplitOptions::propagated without a propagation");
     if (!options.propagated) {
         geodesic::PropagationOptions propagation_options;
         for (const Spoke& s : spokes) propagation_options.stop_points.push_back(g.location(s.to));

@@ -132,6 +132,10 @@ TEST(Split, face_split_at_a_point_outside_the_patch_is_refused_and_g_is_unchange
     EXPECT_EQ(g.coarse().n_vertices(), before.coarse().n_vertices());
     EXPECT_EQ(g.coarse().n_faces(), before.coarse().n_faces());
     for (auto e : g.coarse().edges()) EXPECT_EQ(g.polyline(e), before.polyline(e));
+    // A propagation said to be made beforehand must be there.
+    SplitOptions without;
+    without.propagated = true;
+    EXPECT_THROW(split_face(g, f, SurfacePoint::at_vertex(v), without), InvalidInput);
 }
 
 /// A point strictly inside the patch of f: the centroid of its largest overlay triangle.
