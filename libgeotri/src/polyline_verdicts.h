@@ -7,6 +7,7 @@
 #include <geotri/geodesic_triangulation.h>
 #include <geotri/validate.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -24,12 +25,17 @@ public:
     /// (as validate() says it); null when it is not known here. Only polylines whose points are apart and
     /// pairwise on a common fine face are known.
     const std::string* find(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
+    /// The polyline of g's edge e with its points in canonical form, when its verdict is known here (as find());
+    /// else null. Validation needs the canonical points of every polyline for condition 3.
+    const Polyline* canonical(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
 
 private:
     struct Verdict {
         double recorded_length;
         std::string defect;
+        std::shared_ptr<const Polyline> canonical;
     };
+    const Verdict* verdict(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
     std::optional<GeodesicTriangulation> kept_;
     std::unordered_map<const Polyline*, Verdict> verdicts_;
 };

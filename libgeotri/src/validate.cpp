@@ -187,8 +187,12 @@ void Validator::prepare() {
     for (auto e : coarse_.edges()) {
         const auto h = coarse_.halfedge_handle(e, 0);
         ends_[e.idx()] = {coarse_.from_vertex_handle(h).idx(), coarse_.to_vertex_handle(h).idx()};
-        const Polyline& raw = g_.polyline(e);
         Polyline& path = paths_[e.idx()];
+        if (const Polyline* known = known_ ? known_->canonical(g_, e) : nullptr) {
+            path = *known;  // canonicalised when its verdict was found
+            continue;
+        }
+        const Polyline& raw = g_.polyline(e);
         path.reserve(raw.size());
         for (std::size_t i = 0; i < raw.size(); ++i) {
             try {
@@ -622,23 +626,35 @@ PolylineVerdicts::PolylineVerdicts(const GeodesicTriangulation& g, const Polylin
     const Mesh& mesh = g.fine().mesh;
     for (OpenMesh::EdgeHandle e : g.coarse().edges()) {
         const Polyline& raw = g.polyline(e);
-        if (const std::string* known = earlier.find(g, e)) {
-            verdicts_[&raw] = {g.length(e), *known};
+        if (const Verdict* known = earlier.verdict(g, e)) {
+            verdicts_[&raw] = *known;
             continue;
         }
         // As Validator::prepare and check_polyline see it: canonical points, apart and on common faces.
         if (raw.size() < 2) continue;
-        Polyline path;
-        path.reserve(raw.size());
-        for (const SurfacePoint& p : raw) path.push_back(mesh.canonical(p));
-        if (points_defect(mesh, path).empty()) verdicts_[&raw] = {g.length(e), shape_defect(mesh, path, g.length(e))};
+        auto path = std::make_shared<Polyline>();
+        path->reserve(raw.size());
+        for (const SurfacePoint& p : raw) path->push_back(mesh.canonical(p));
+        if (points_defect(mesh, *path).empty())
+            verdicts_[&raw] = {g.length(e), shape_defect(mesh, *path, g.length(e)), std::move(path)};
     }
 }
 
-const std::string* PolylineVerdicts::find(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const {
+const PolylineVerdicts::Verdict* PolylineVerdicts::verdict(const GeodesicTriangulation& g,
+                                                           OpenMesh::EdgeHandle e) const {
     const auto it = verdicts_.find(&g.polyline(e));
     if (it == verdicts_.end() || it->second.recorded_length != g.length(e)) return nullptr;
-    return &it->second.defect;
+    return &it->second;
+}
+
+const std::string* PolylineVerdicts::find(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const {
+    const Verdict* known = verdict(g, e);
+    return known ? &known->defect : nullptr;
+}
+
+const Polyline* PolylineVerdicts::canonical(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const {
+    const Verdict* known = verdict(g, e);
+    return known ? known->canonical.get() : nullptr;
 }
 
 ValidationReport validate(const GeodesicTriangulation& g, const ValidationOptions& options,
