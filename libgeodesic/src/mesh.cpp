@@ -99,6 +99,8 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
     {
         std::vector<int> fill(outgoing_offset_.begin(), outgoing_offset_.end() - 1);
         for (int h = 0; h < nh; ++h) outgoing_list_[fill[tail(h)]++] = h;
+        outgoing_head_.resize(nh);
+        for (int i = 0; i < nh; ++i) outgoing_head_[i] = head(outgoing_list_[i]);
     }
     outgoing_.assign(nv, -1);
     boundary_vertex_.assign(nv, 0);
@@ -156,8 +158,8 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
 
 int Mesh::find_halfedge(int from, int to) const {
     if (from < 0 || from >= num_vertices()) return -1;
-    for (int h : outgoing_halfedges(from))
-        if (head(h) == to) return h;
+    for (int i = outgoing_offset_[from]; i < outgoing_offset_[from + 1]; ++i)
+        if (outgoing_head_[i] == to) return outgoing_list_[i];
     return -1;
 }
 

@@ -86,6 +86,7 @@ private:
     std::vector<int> outgoing_;
     std::vector<int> outgoing_offset_;  // CSR: the halfedges leaving v are outgoing_list_[offset[v] .. offset[v+1])
     std::vector<int> outgoing_list_;
+    std::vector<int> outgoing_head_;    // head of outgoing_list_[i], side by side for find_halfedge()
     std::vector<double> length_;
     std::vector<double> corner_angle_;
     std::vector<Eigen::Vector2d> apex_;
