@@ -479,11 +479,7 @@ private:
         const CoarseMesh& coarse = g_.coarse();
         const auto h = halfedges_of(coarse, f);
         if (const std::optional<Centre> centre = circumcentre(f)) {
-            std::vector<FaceHandle> around{f};
-            for (HalfedgeHandle x : h) {
-                const FaceHandle other = coarse.face_handle(coarse.opposite_halfedge_handle(x));
-                if (other.is_valid()) around.push_back(other);
-            }
+            const std::vector<FaceHandle> around = with_neighbours(f);
             // A curved vertex of T inside the circumcircle goes in first: between curved vertices of T that are
             // not coarse vertices, circumcentres can chase each other down to ever smaller triangles.
             const double floor = std::max(0.5 * smallest_corner(f), keep_above_);
@@ -552,23 +548,22 @@ private:
         return FaceHandle();
     }
 
+    /// `faces`, then f and its neighbours that it does not hold yet (nothing for an invalid f).
+    std::vector<FaceHandle> with_neighbours(FaceHandle f, std::vector<FaceHandle> faces = {}) const {
+        if (!f.is_valid()) return faces;
+        const CoarseMesh& coarse = g_.coarse();
+        auto add = [&faces](FaceHandle x) {
+            if (x.is_valid() && std::find(faces.begin(), faces.end(), x) == faces.end()) faces.push_back(x);
+        };
+        add(f);
+        for (HalfedgeHandle h : coarse.fh_range(f)) add(coarse.face_handle(coarse.opposite_halfedge_handle(h)));
+        return faces;
+    }
+
     /// The faces whose patches may hold f's circumcentre, the likeliest first: where layout_walk() ends and its
     /// neighbours, then f and its neighbours.
     std::vector<FaceHandle> centre_patches(FaceHandle f, const Centre& centre) const {
-        const CoarseMesh& coarse = g_.coarse();
-        std::vector<FaceHandle> faces;
-        auto add_with_neighbours = [&](FaceHandle x) {
-            if (!x.is_valid()) return;
-            if (std::find(faces.begin(), faces.end(), x) == faces.end()) faces.push_back(x);
-            for (HalfedgeHandle h : coarse.fh_range(x)) {
-                const FaceHandle other = coarse.face_handle(coarse.opposite_halfedge_handle(h));
-                if (other.is_valid() && std::find(faces.begin(), faces.end(), other) == faces.end())
-                    faces.push_back(other);
-            }
-        };
-        add_with_neighbours(layout_walk(centre.corner, centre.layout_direction, centre.radius));
-        add_with_neighbours(f);
-        return faces;
+        return with_neighbours(f, with_neighbours(layout_walk(centre.corner, centre.layout_direction, centre.radius)));
     }
 
     /// Splits the first of `faces` whose patch holds p strictly inside, with no new corner below `floor`; false

@@ -21,8 +21,9 @@ struct PropagationOptions {
     /// With stop points: explore towards them first. Events are taken in the order of their distance plus the
     /// straight-line distance that is left to the nearest stop point not yet settled (A*), which never
     /// overestimates, so the stop points' distances and paths stay exact while much less of the mesh is explored
-    /// when they lie in few directions. Nothing else is promised then: when the propagation stops early, settled_radius() is 0 and
-    /// every point other than a stop point reports +inf. Ignored without stop points or with a max_distance.
+    /// when they lie in few directions. Nothing else is promised then: when the propagation stops early,
+    /// settled_radius() is 0 and every point other than a stop point reports +inf. Ignored without stop points or
+    /// with a max_distance.
     bool goal_directed = false;
 };
 

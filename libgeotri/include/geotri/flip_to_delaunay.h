@@ -90,11 +90,12 @@ struct FlipToDelaunayResult {
 /// number of violations of conditions 1-3, or, with none left, that of condition 4; it stops when G is valid or no
 /// such operation is left. Trials run in parallel, and the first that helps in a fixed order is kept. Improve (only
 /// on a valid G): sweeps over the edges, flipping by the criterion with plan_flip()'s local checks, until a sweep
-/// makes no flip or max_improve_passes is reached; it terminates because each flip strictly improves a finite order (criterion
-/// angle: the sorted vector of all corner angles), and it never makes a valid G invalid (a final validate() with
-/// the overlay; if that fails, G goes back to what it was before improving). Deterministic: improve evaluates edges
-/// in parallel but flips in edge index order, and untangle keeps the first helpful trial in order, so the result is
-/// the same for any thread count. Preconditions: every edge traced. Throws InvalidInput for a malformed G.
+/// makes no flip or max_improve_passes is reached; it terminates because each flip strictly improves a finite
+/// order (criterion angle: the sorted vector of all corner angles), and it never makes a valid G invalid (a final
+/// validate() with the overlay; if that fails, G goes back to what it was before improving). Deterministic:
+/// improve evaluates edges in parallel but flips in edge index order, and untangle keeps the first helpful trial in
+/// order, so the result is the same for any thread count. Preconditions: every edge traced. Throws InvalidInput for
+/// a malformed G.
 FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDelaunayOptions& options = {});
 
 /// Improve only, starting from `edges` and going on with the edges that their flips change, on a G that the caller
