@@ -4,6 +4,8 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
+#include "collapse_paths.h"
+
 #include <geodesic/errors.h>
 #include <geotri/decimate.h>
 #include <geotri/geodesic_triangulation.h>
@@ -24,6 +26,7 @@
 #include <numeric>
 #include <queue>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace geotri {
@@ -70,6 +73,7 @@ struct ComponentState {
     CollapseLimits limits = k_rounds[0];
     double error_scale = 1.0;  // makes the quadric error scale-free, so that it fits a float priority
     double volume = 0.0;       // six times the component's signed volume now; collapses never change its sign
+    detail::CollapsePaths paths;  // what each edge is on T (fine indices)
 };
 
 // Most that a new triangle may fold against the unchanged triangle across its far edge: cos(177.4°). Normal checks
@@ -182,7 +186,17 @@ public:
         return change;
     }
 
-    void preprocess_collapse(const CollapseInfo& ci) override { state_->volume += volume_change(ci); }
+    void preprocess_collapse(const CollapseInfo& ci) override {
+        state_->volume += volume_change(ci);
+        MeshT& mesh = Base::mesh();
+        auto fine = [&](OpenMesh::VertexHandle v) { return mesh.property(state_->fine_index, v); };
+        std::vector<int> neighbours, apexes;
+        for (const auto w : mesh.vv_range(ci.v0)) {
+            if (w == ci.v1) continue;
+            (w == ci.vl || w == ci.vr ? apexes : neighbours).push_back(fine(w));
+        }
+        state_->paths.collapse(fine(ci.v0), fine(ci.v1), neighbours, apexes);
+    }
 
     void postprocess_collapse(const CollapseInfo& ci) override {
         MeshT& mesh = Base::mesh();
@@ -474,7 +488,8 @@ std::vector<int> split_target(std::size_t target, const std::vector<DecimateComp
 // indices) and triangles (fine indices).
 void decimate_component(const FineMesh& fine, const ComponentInput& input, int target_faces,
                         const DecimateOptions& options, ProgressSink& sink, std::vector<int>& coarse_vertices,
-                        std::vector<std::array<int, 3>>& coarse_triangles) {
+                        std::vector<std::array<int, 3>>& coarse_triangles,
+                        std::vector<std::vector<int>>& edge_paths) {
     CoarseMesh mesh;
     ComponentState state;
     mesh.add_property(state.quadric);
@@ -570,6 +585,12 @@ void decimate_component(const FineMesh& fine, const ComponentInput& input, int t
         for (const auto vh : mesh.fv_range(fh)) t[std::size_t(i++)] = mesh.property(state.fine_index, vh);
         coarse_triangles.push_back(t);
     }
+    edge_paths.clear();
+    for (const auto eh : mesh.edges()) {
+        const auto h = mesh.halfedge_handle(eh, 0);
+        edge_paths.push_back(state.paths.path(mesh.property(state.fine_index, mesh.from_vertex_handle(h)),
+                                              mesh.property(state.fine_index, mesh.to_vertex_handle(h))));
+    }
 }
 
 }  // namespace
@@ -641,6 +662,7 @@ DecimateResult decimate(const FineMesh& fine, const DecimateOptions& options) {
     ProgressSink sink(options, std::size_t(mesh.num_faces()), target);
     std::vector<std::vector<int>> coarse_vertices(n_components);
     std::vector<std::vector<std::array<int, 3>>> coarse_triangles(n_components);
+    std::vector<std::vector<std::vector<int>>> edge_paths(n_components);
     // Largest first, so that dynamic scheduling balances the threads.
     std::vector<std::size_t> order(n_components);
     std::iota(order.begin(), order.end(), std::size_t(0));
@@ -653,7 +675,8 @@ DecimateResult decimate(const FineMesh& fine, const DecimateOptions& options) {
         const std::size_t c = order[std::size_t(k)];
         try {
             result.components[c].target_faces = shares[c];
-            decimate_component(fine, inputs[c], shares[c], options, sink, coarse_vertices[c], coarse_triangles[c]);
+            decimate_component(fine, inputs[c], shares[c], options, sink, coarse_vertices[c], coarse_triangles[c],
+                               edge_paths[c]);
         } catch (...) {
             std::lock_guard<std::mutex> lock(error_mutex);
             if (!error) error = std::current_exception();
@@ -678,6 +701,14 @@ DecimateResult decimate(const FineMesh& fine, const DecimateOptions& options) {
         for (const auto& t : coarse_triangles[c])
             result.coarse.triangles.push_back({coarse_index[std::size_t(t[0])], coarse_index[std::size_t(t[1])],
                                                coarse_index[std::size_t(t[2])]});
+    for (std::size_t c = 0; c < n_components; ++c)
+        for (std::vector<int>& path : edge_paths[c]) {
+            if (path.front() > path.back()) std::reverse(path.begin(), path.end());
+            result.edges.push_back({coarse_index[std::size_t(path.front())], coarse_index[std::size_t(path.back())],
+                                    std::move(path)});
+        }
+    std::sort(result.edges.begin(), result.edges.end(),
+              [](const DecimatedEdge& x, const DecimatedEdge& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
 
     result.aborted = sink.stopped();
     result.target_reached = options.target_vertices > 0 ? result.coarse.positions.size() <= options.target_vertices

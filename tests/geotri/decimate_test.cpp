@@ -163,6 +163,29 @@ void expect_valid_decimation(const FineMesh& fine, const DecimateResult& result)
     }
     EXPECT_EQ(std::size_t(vertices), coarse.positions.size());
     EXPECT_EQ(std::size_t(faces), coarse.triangles.size());
+
+    // Every coarse edge, once and in order, with a path along fine edges between its ends' fine vertices that
+    // passes no other coarse vertex.
+    std::set<std::pair<int, int>> coarse_edges, fine_edges;
+    for (const auto& [edge, f] : face_of_directed)
+        if (edge.first < edge.second) coarse_edges.insert(edge);
+    for (const auto& t : fine.mesh.triangles())
+        for (int i = 0; i < 3; ++i)
+            fine_edges.insert(std::minmax(t[std::size_t(i)], t[std::size_t((i + 1) % 3)]));
+    const std::set<int> coarse_fine(result.fine_vertex.begin(), result.fine_vertex.end());
+    ASSERT_EQ(result.edges.size(), coarse_edges.size());
+    auto expected = coarse_edges.begin();
+    for (const DecimatedEdge& e : result.edges) {
+        const std::string name = "edge (" + std::to_string(e.a) + ", " + std::to_string(e.b) + ")";
+        EXPECT_EQ(std::make_pair(e.a, e.b), *expected++);
+        ASSERT_GE(e.fine_path.size(), 2u) << name;
+        EXPECT_EQ(e.fine_path.front(), result.fine_vertex[std::size_t(e.a)]) << name;
+        EXPECT_EQ(e.fine_path.back(), result.fine_vertex[std::size_t(e.b)]) << name;
+        for (std::size_t i = 0; i + 1 < e.fine_path.size(); ++i)
+            EXPECT_TRUE(fine_edges.count(std::minmax(e.fine_path[i], e.fine_path[i + 1]))) << name << ", step " << i;
+        for (std::size_t i = 1; i + 1 < e.fine_path.size(); ++i)
+            EXPECT_FALSE(coarse_fine.count(e.fine_path[i])) << name << " passes a coarse vertex at step " << i;
+    }
 }
 
 // On a sphere centred at the origin every face of a coarse mesh whose vertices are on the sphere points outwards.

@@ -61,11 +61,20 @@ struct DecimateComponent {
     int faces = 0;         ///< coarse faces reached
 };
 
+/// An edge of the coarse mesh and what the collapses made of it on T: the fine edges that were dragged into it.
+/// A geodesic of the edge keeps the decimated triangulation when it is homotopic to this path on T with the coarse
+/// vertices taken out (geodesic::straighten_path); the shortest geodesic between the ends need not be.
+struct DecimatedEdge {
+    int a = -1, b = -1;          ///< coarse vertices, a < b
+    std::vector<int> fine_path;  ///< fine vertices from fine_vertex[a] to fine_vertex[b], each next to the next on T
+};
+
 struct DecimateResult {
     /// The coarse mesh: positions copied bit for bit from T, triangles oriented as T's. Vertices are in the order of
     /// their fine indices.
     MeshData coarse;
     std::vector<int> fine_vertex;  ///< per coarse vertex: its index in T
+    std::vector<DecimatedEdge> edges;  ///< every coarse edge, sorted by (a, b)
     std::vector<DecimateComponent> components;  ///< in T's component order (FineMesh::component)
     std::size_t target_faces = 0;  ///< the target in faces, all components (for coarsest: the sum of min_faces)
     /// Whether the coarse mesh has at most target_faces faces (target_vertices vertices when that was asked). False
