@@ -62,17 +62,20 @@ def sweep_one(mesh, options, work):
         cells.append(f"{sum(times.values()):.2f}")
         return "| " + " | ".join(cells) + " |"
 
-    code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--faces", str(options.faces)],
+    code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--paths", f"{stem}.paths",
+                                                        "--faces", str(options.faces)],
                                             options.build)
     if code != 0:
         return stop(f"refused: {err.splitlines()[-1] if err else code}")
     if not dec["target_reached"]:  # the topology needs more faces: take the coarsest
-        code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--coarsest"],
+        code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--paths",
+                                                            f"{stem}.paths", "--coarsest"],
                                                 options.build)
         if code != 0:
             return stop(f"--coarsest refused: {err.splitlines()[-1] if err else code}")
     row += [str(dec["faces"]), str(dec["coarse_faces"])]
-    code, _, times["trace"], err = run("trace", [str(mesh), f"{stem}.off", "-o", f"{stem}.gtri", *threads],
+    code, _, times["trace"], err = run("trace", [str(mesh), f"{stem}.off", "--paths", f"{stem}.paths", "-o",
+                                                     f"{stem}.gtri", *threads],
                                        options.build)
     if code != 0:
         return stop(f"trace failed: {err}")

@@ -68,7 +68,7 @@ The geodesic triangulation is $verdict (geotri-check's full report: $name.check.
 Outputs in $root/$out/:
   $name.png                    coarse mesh, traced geodesics, flipped triangulation coloured by patch
   $name.refined.png            the refined triangulation
-  $name.coarse.off             the decimated mesh
+  $name.coarse.off             the decimated mesh ($name.coarse.paths: its edges on the mesh, for trace)
   $name.traced.gtri            its edges traced as geodesics (coarse mesh, vertex locations, polylines)
   $name.flipped.gtri           after geotri-flip
   $name.refined.gtri           after geotri-refine: the final geodesic triangulation

@@ -1,13 +1,15 @@
 // geotri-decimate: a coarse mesh of a closed triangle mesh by halfedge collapses, with the coarse vertices at exact
 // positions of the input's vertices and every component's topology kept.
 //
-//   geotri-decimate INPUT -o COARSE (--faces N | --vertices N | --ratio R | --coarsest) [--json] [--quiet]
+//   geotri-decimate INPUT -o COARSE (--faces N | --vertices N | --ratio R | --coarsest) [--paths PATHS] [--json]
+//                   [--quiet]
 
 #include "output.h"
 #include "progress.h"
 #include "tool.h"
 
 #include <geotri/decimate.h>
+#include <geotri/edge_paths_io.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/mesh_io.h>
 
@@ -27,6 +29,7 @@ struct Arguments {
     double ratio = 0.0;
     bool coarsest = false;
     std::string strategy = "multiple-choice";
+    std::string paths;
 };
 
 int run(tools::Tool& tool) {
@@ -34,7 +37,7 @@ int run(tools::Tool& tool) {
     app.description("Decimates a closed triangle mesh by halfedge collapses: the coarse vertices are input vertices at\n"
                     "their exact positions, and every component keeps its topology (genus). The target is split\n"
                     "between the components in proportion to their area.");
-    tool.set_help_footer({"geotri-decimate bone.stl -o bone.coarse.off --faces 320",
+    tool.set_help_footer({"geotri-decimate bone.stl -o bone.coarse.off --faces 320 --paths bone.paths",
                           "geotri-decimate bone.stl -o bone.coarse.off --coarsest --json"});
     Arguments args;
     app.add_option("INPUT", args.input, "Closed triangle mesh: .stl, .off, .obj or .ply")
@@ -59,6 +62,8 @@ int run(tools::Tool& tool) {
     app.add_option("--strategy", args.strategy,
                    "multiple-choice (default: random candidates while far from the target) or priority-queue")
         ->check(CLI::IsMember({"multiple-choice", "priority-queue"}));
+    app.add_option("--paths", args.paths,
+                   "Also write what each coarse edge is on the input, for geotri-trace --paths (a text file)");
     tool.parse();
 
     tools::Progress progress(tool.program(), tool.verbose());
@@ -87,6 +92,7 @@ int run(tools::Tool& tool) {
     progress.stage("writing " + args.output);
     const double write_start = tools::now_seconds();
     geotri::write_mesh(args.output, result.coarse);
+    if (!args.paths.empty()) geotri::write_edge_paths(args.paths, geotri::make_edge_paths(fine, result));
     const double write_seconds = tools::now_seconds() - write_start;
     progress.clear();
 
@@ -110,6 +116,7 @@ int run(tools::Tool& tool) {
         summary.add("decimate_seconds", decimate_seconds);
         summary.add("write_seconds", write_seconds);
         summary.add("output", args.output);
+        if (!args.paths.empty()) summary.add("paths", args.paths);
         std::printf("%s\n", summary.str().c_str());
     }
     if (tool.verbose()) {

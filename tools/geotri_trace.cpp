@@ -1,6 +1,6 @@
 // geotri-trace: a coarse mesh of T made into a geodesic triangulation, written as a .gtri file.
 //
-//   geotri-trace FINE COARSE -o OUT.gtri [--threads N] [--quiet] [--json]
+//   geotri-trace FINE COARSE -o OUT.gtri [--paths PATHS] [--threads N] [--quiet] [--json]
 
 #include "output.h"
 #include "progress.h"
@@ -28,6 +28,7 @@ struct Arguments {
     std::string fine_path;
     std::string coarse_path;
     std::string output;
+    std::string paths;
 };
 
 int run(tools::Tool& tool) {
@@ -35,7 +36,7 @@ int run(tools::Tool& tool) {
     app.description("Makes every edge of a coarse mesh an exact geodesic of the fine mesh FINE, and writes the\n"
                     "geodesic triangulation as a .gtri file (docs/gtri-format.md). Coarse vertices that coincide\n"
                     "with vertices of FINE map to them; the others move to the closest point of FINE.");
-    tool.set_help_footer({"geotri-trace bone.stl bone.coarse.off -o bone.gtri",
+    tool.set_help_footer({"geotri-trace bone.stl bone.coarse.off -o bone.gtri --paths bone.paths",
                           "geotri-trace bone.stl bone.coarse.off -o bone.gtri --threads 4 --json"});
     Arguments args;
     app.add_option("FINE", args.fine_path, "The fine mesh T: closed triangle mesh (.stl, .off, .obj, .ply)")
@@ -47,6 +48,11 @@ int run(tools::Tool& tool) {
     app.add_option("-o,--output", args.output, "The geodesic triangulation: .gtri")
         ->required()
         ->check(tools::extension_validator({".gtri"}));
+    app.add_option("--paths", args.paths,
+                   "Edge paths from geotri-decimate --paths: when the shortest geodesics do not make a valid\n"
+                   "triangulation, each edge is also traced the way round that the decimation meant, and the\n"
+                   "better of the two is kept")
+        ->check(CLI::ExistingFile);
     tool.parse();
 
     tools::Progress progress(tool.program(), tool.verbose());
@@ -54,11 +60,14 @@ int run(tools::Tool& tool) {
     const double load_start = tools::now_seconds();
     auto fine = std::make_shared<const geotri::FineMesh>(geotri::load_fine_mesh(args.fine_path));
     geotri::CoarseMesh coarse = geotri::make_coarse_mesh(geotri::read_mesh(args.coarse_path), args.coarse_path);
+    geotri::EdgePaths edge_paths;
+    if (!args.paths.empty()) edge_paths = geotri::read_edge_paths(args.paths);
     const double load_seconds = tools::now_seconds() - load_start;
 
     geotri::GeodesicTriangulation g(fine, std::move(coarse));
     geotri::TraceOptions options;
     options.threads = tool.common.threads;
+    if (!args.paths.empty()) options.edge_paths = &edge_paths;
     options.progress = [&progress](int done, int total) { progress.update(done, total); };
     progress.stage("tracing: propagations");
     geotri::TraceResult traced;
@@ -102,6 +111,11 @@ int run(tools::Tool& tool) {
         summary.add("longest_propagation", traced.longest_propagation);
         summary.add("windows_created", traced.windows_created);
         summary.add("polyline_points", traced.polyline_points);
+        if (!args.paths.empty()) {
+            summary.add("class_geodesics_differing", traced.class_geodesics_differing);
+            summary.add("class_geodesics_blocked", traced.class_geodesics_blocked);
+            summary.add("class_geodesics_kept", traced.class_geodesics_kept);
+        }
         summary.add("load_seconds", load_seconds);
         summary.add("trace_seconds", traced.seconds);
         summary.add("write_seconds", write_seconds);
@@ -125,6 +139,11 @@ int run(tools::Tool& tool) {
                          program, traced.moved_vertices, tools::format_double(traced.largest_location_move).c_str(),
                          traced.largest_move_vertex);
         }
+        if (!args.paths.empty())
+            std::fprintf(stderr, "%s: %d edges have a geodesic in the decimation's class other than the shortest, %d "
+                                 "run through another coarse vertex; G holds the %s geodesics\n",
+                         program, traced.class_geodesics_differing, traced.class_geodesics_blocked,
+                         traced.class_geodesics_kept ? "class" : "shortest");
         if (report.valid) {
             std::fprintf(stderr, "%s: valid geodesic triangulation (checked in %.3f s)\n", program, check_seconds);
         } else {

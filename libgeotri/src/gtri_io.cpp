@@ -5,6 +5,7 @@
 #endif
 
 #include "atomic_file.h"
+#include "text_reader.h"
 
 #include <geodesic/errors.h>
 #include <geotri/gtri_io.h>
@@ -27,6 +28,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using detail::LineReader;
+using detail::parse_count;
+using detail::parse_int;
+using detail::quoted;
+using detail::read_text;
+using detail::words;
 using geodesic::PointKind;
 using geodesic::SurfacePoint;
 
@@ -94,94 +101,11 @@ std::string relative_fine_path(const std::string& gtri_path, const std::string& 
 
 // ---- Reading ---------------------------------------------------------------------------------------------------
 
-/// The lines of a file held in memory, numbered from 1; blank lines and comment lines ('#' first) are skipped.
-class LineReader {
-public:
-    LineReader(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {}
-
-    /// The next line that is not blank or a comment, without its line break (and without a trailing '\r').
-    /// Throws "truncated" at the end of the file, saying what was expected.
-    std::string_view next(const char* expected) {
-        while (pos_ < text_.size()) {
-            const std::size_t end = text_.find('\n', pos_);
-            const std::size_t stop = end == std::string::npos ? text_.size() : end;
-            std::string_view line(text_.data() + pos_, stop - pos_);
-            pos_ = end == std::string::npos ? text_.size() : end + 1;
-            ++line_number_;
-            if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-            if (line.find('\0') != std::string_view::npos) fail("holds a NUL byte: not a text file");
-            if (line.empty() || line.front() == '#') continue;
-            return line;
-        }
-        ++line_number_;
-        fail(std::string("the file is truncated: expected ") + expected);
-    }
-
-    bool at_end() {
-        while (pos_ < text_.size()) {
-            const std::size_t end = text_.find('\n', pos_);
-            const std::size_t stop = end == std::string::npos ? text_.size() : end;
-            std::string_view line(text_.data() + pos_, stop - pos_);
-            if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-            if (!line.empty() && line.front() != '#') return false;
-            pos_ = end == std::string::npos ? text_.size() : end + 1;
-            ++line_number_;
-        }
-        return true;
-    }
-
-    int line_number() const { return line_number_; }
-    const std::string& path() const { return path_; }
-
-    [[noreturn]] void fail(const std::string& what) const { fail_at(line_number_, what); }
-    [[noreturn]] void fail_at(int line, const std::string& what) const {
-        throw IOError(path_ + ": line " + std::to_string(line) + ": " + what);
-    }
-
-private:
-    std::string path_;
-    std::string text_;
-    std::size_t pos_ = 0;
-    int line_number_ = 0;
-};
-
-/// Splits on runs of spaces and tabs.
-std::vector<std::string_view> words(std::string_view line) {
-    std::vector<std::string_view> out;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-        if (i > start) out.push_back(line.substr(start, i - start));
-    }
-    return out;
-}
-
-std::string quoted(std::string_view text) {
-    constexpr std::size_t k_shown = 60;
-    return "'" + std::string(text.substr(0, k_shown)) + (text.size() > k_shown ? "...'" : "'");
-}
-
-bool parse_int(std::string_view text, long long& value) {
-    if (text.empty() || text.front() == '+') return false;
-    const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
-    return r.ec == std::errc() && r.ptr == text.data() + text.size();
-}
-
 /// A decimal number only: from_chars would also take "nan" and "inf", which the format never holds.
 bool parse_double(std::string_view text, double& value) {
     if (text.empty() || text.front() == '+') return false;
     const auto r = std::from_chars(text.data(), text.data() + text.size(), value, std::chars_format::general);
     return r.ec == std::errc() && r.ptr == text.data() + text.size() && std::isfinite(value);
-}
-
-/// A count or an index: a non-negative int.
-int parse_count(const LineReader& in, std::string_view text, const char* what) {
-    long long value = 0;
-    if (!parse_int(text, value) || value < 0 || value > 2147483647LL)
-        in.fail("bad " + std::string(what) + " " + quoted(text) + " (expected a non-negative integer)");
-    return static_cast<int>(value);
 }
 
 /// Parses the spelling `v:I`, `e:I,J:T` or `f:I:B0,B1,B2`; returns an empty string or what is wrong.
@@ -239,20 +163,6 @@ SurfacePoint checked_point(const LineReader& in, int line, const geodesic::Mesh&
         in.fail_at(line, "surface point " + geodesic::to_spec(p) + " is not in its canonical form (" +
                              geodesic::to_spec(canonical) + ")");
     return canonical;
-}
-
-std::string read_text(const std::string& path) {
-    std::FILE* file = std::fopen(path.c_str(), "rb");
-    if (file == nullptr) throw IOError(path + ": cannot read: " + std::strerror(errno));
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t got;
-    while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, got);
-    const bool failed = std::ferror(file) != 0;
-    std::fclose(file);
-    if (failed) throw IOError(path + ": cannot read");
-    if (text.empty()) throw IOError(path + ": the file is empty");
-    return text;
 }
 
 struct RawEdge {

@@ -4,6 +4,8 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
+#include "class_geodesics.h"
+
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
 #include <geotri/trace.h>
@@ -361,8 +363,9 @@ TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options) {
     std::vector<std::exception_ptr> errors(edges.size());
     std::atomic<bool> failed{false};
     int done = 0;
+    int threads = 1;
 #ifdef _OPENMP
-    const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+    threads = options.threads > 0 ? options.threads : omp_get_max_threads();
 #endif
 #pragma omp parallel num_threads(threads)
     {
@@ -414,6 +417,11 @@ TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options) {
         result.windows_created += windows[i];
     }
     result.propagations = static_cast<int>(total);
+    if (options.edge_paths) {
+        detail::prefer_class_geodesics(g, *options.edge_paths, threads, result);
+        result.polyline_points = 0;
+        for (const auto e : g.coarse().edges()) result.polyline_points += g.polyline(e).size();
+    }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }

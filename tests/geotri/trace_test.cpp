@@ -4,9 +4,11 @@
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
 #include <geotri/decimate.h>
+#include <geotri/edge_paths_io.h>
 #include <geotri/gtri_io.h>
 #include <geotri/mesh_io.h>
 #include <geotri/trace.h>
+#include <geotri/validate.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
@@ -403,6 +405,112 @@ TEST_F(Trace, shared_vertebra) {
         GTEST_SKIP() << "shared meshes not found at " << geotri::test::configured_shared_data_dir()
                      << " (set GEOTRI_SHARED_DATA)";
     trace_real_mesh(dir_, geotri::test::shared_mesh("anatomy/lumbar_vertebra_mean_2nd.ply").path, 320, 8);
+}
+
+// The bundled vertebra (examples/data), whose shortest geodesics cross at 320 faces and at the coarsest: with the
+// decimation's edge paths, every edge keeps the class that the decimation gave it, and G is valid.
+TEST_F(Trace, edge_paths_keep_the_decimated_triangulation) {
+    auto fine = std::make_shared<const geotri::FineMesh>(
+        geotri::load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/../../examples/data/lumbar_vertebra.ply"));
+    for (const std::size_t faces : {std::size_t(320), std::size_t(0)}) {
+        geotri::DecimateOptions options;
+        options.target_faces = faces;
+        options.coarsest = faces == 0;
+        const geotri::DecimateResult decimated = geotri::decimate(*fine, options);
+        const geotri::EdgePaths paths = geotri::make_edge_paths(*fine, decimated);
+        const std::string name = faces ? "320 faces" : "coarsest";
+
+        GeodesicTriangulation shortest(fine, geotri::make_coarse_mesh(decimated.coarse, "coarse"));
+        geotri::trace(shortest);
+        EXPECT_FALSE(geotri::validate(shortest).valid) << name << ": the case needs crossing shortest geodesics";
+
+        GeodesicTriangulation g(fine, geotri::make_coarse_mesh(decimated.coarse, "coarse"));
+        geotri::TraceOptions with_paths;
+        with_paths.edge_paths = &paths;
+        const geotri::TraceResult result = geotri::trace(g, with_paths);
+        EXPECT_TRUE(result.class_geodesics_kept) << name;
+        EXPECT_GT(result.class_geodesics_differing, 0) << name;
+        const geotri::ValidationReport report = geotri::validate(g);
+        EXPECT_TRUE(report.valid) << name << ": " << report.violation_count[0] << ", " << report.violation_count[1]
+                                  << ", " << report.violation_count[2] << ", " << report.violation_count[3];
+        // The class geodesics are longer than the shortest ones where they differ, never shorter.
+        int longer = 0;
+        for (const auto e : g.coarse().edges()) {
+            EXPECT_GE(g.length(e), shortest.length(e) * (1 - 1e-12)) << name << ", edge " << e.idx();
+            longer += g.length(e) > shortest.length(e) * (1 + 1e-9);
+        }
+        EXPECT_EQ(longer, result.class_geodesics_differing) << name;
+    }
+}
+
+TEST_F(Trace, edge_paths_of_another_mesh_are_refused) {
+    const auto fine = fine_file(geotri::test::icosphere(3), "sphere.off");
+    geotri::DecimateOptions options;
+    options.target_faces = 40;
+    const geotri::DecimateResult decimated = geotri::decimate(*fine, options);
+    geotri::EdgePaths paths = geotri::make_edge_paths(*fine, decimated);
+    paths.name = "sphere.paths";
+    geotri::TraceOptions with_paths;
+    with_paths.edge_paths = &paths;
+    auto trace_with = [&](const geotri::MeshData& coarse) {
+        GeodesicTriangulation g(fine, geotri::make_coarse_mesh(coarse, "coarse"));
+        geotri::trace(g, with_paths);
+    };
+    EXPECT_NO_THROW(trace_with(decimated.coarse));
+
+    options.target_faces = 60;  // another coarse mesh
+    EXPECT_THROW(trace_with(geotri::decimate(*fine, options).coarse), geotri::IOError);
+    geotri::EdgePaths other_fine = paths;
+    other_fine.fine_checksum ^= 1;
+    with_paths.edge_paths = &other_fine;
+    EXPECT_THROW(trace_with(decimated.coarse), geotri::IOError);
+    geotri::EdgePaths broken = paths;
+    broken.edges[0].fine_path.insert(broken.edges[0].fine_path.begin() + 1, broken.edges[5].fine_path.back());
+    with_paths.edge_paths = &broken;
+    EXPECT_THROW(trace_with(decimated.coarse), geotri::IOError);
+}
+
+TEST_F(Trace, edge_paths_files_read_back_and_bad_ones_are_refused) {
+    const auto fine = fine_file(geotri::test::icosphere(2), "sphere.off");
+    geotri::DecimateOptions options;
+    options.coarsest = true;
+    const geotri::EdgePaths paths = geotri::make_edge_paths(*fine, geotri::decimate(*fine, options));
+    const std::string file = (dir_ / "sphere.paths").string();
+    geotri::write_edge_paths(file, paths);
+    const geotri::EdgePaths read = geotri::read_edge_paths(file);
+    EXPECT_EQ(read.name, file);
+    EXPECT_EQ(read.fine_checksum, paths.fine_checksum);
+    EXPECT_EQ(read.fine_vertices, paths.fine_vertices);
+    EXPECT_EQ(read.coarse_vertices, paths.coarse_vertices);
+    ASSERT_EQ(read.edges.size(), paths.edges.size());
+    for (std::size_t i = 0; i < paths.edges.size(); ++i) {
+        EXPECT_EQ(read.edges[i].a, paths.edges[i].a);
+        EXPECT_EQ(read.edges[i].b, paths.edges[i].b);
+        EXPECT_EQ(read.edges[i].fine_path, paths.edges[i].fine_path);
+    }
+
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string whole = text.str();
+    auto refused = [&](const std::string& content, const std::string& message) {
+        const std::string bad = (dir_ / "bad.paths").string();
+        std::ofstream(bad) << content;
+        try {
+            geotri::read_edge_paths(bad);
+            ADD_FAILURE() << "accepted: " << message;
+        } catch (const geotri::IOError& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+            EXPECT_EQ(std::string(e.what()).rfind(bad, 0), 0u) << e.what();
+        }
+    };
+    refused(whole.substr(0, whole.find('\n', whole.size() / 2) + 1), "truncated");
+    refused("geotri-edge-paths 2\n", "version 2 is not supported");
+    refused("OFF\n", "not an edge paths file");
+    refused(whole + "0 1 2 0 1\n", "unexpected content");
+    std::string out_of_range = whole;
+    out_of_range.replace(out_of_range.rfind(' ') + 1, std::string::npos, "99999999\n");
+    refused(out_of_range, "out of range");
 }
 
 TEST_F(Trace, shared_spine_four_components) {

@@ -40,7 +40,7 @@ case "$case_name" in
 help_lists_every_option)
     run --help
     expect_rc 0
-    for option in INPUT --output --faces --vertices --ratio --coarsest --json --quiet --threads --version --help; do
+    for option in INPUT --output --faces --vertices --ratio --coarsest --paths --json --quiet --threads --version --help; do
         grep -q -- "$option" stdout || fail "--help does not mention $option"
     done
     ;;
@@ -54,6 +54,18 @@ version)
 usage_no_arguments)
     run
     expect_usage_error
+    ;;
+
+edge_paths_are_written)
+    # One line per coarse edge (3F/2 of them), each a path of fine vertices from its first coarse vertex's input
+    # vertex to its second's.
+    run "$bob" -o out.off --faces 60 --paths out.paths
+    expect_rc 0
+    read -r nv nf <<<"$(off_counts out.off)"
+    head -n 1 out.paths | grep -q -x "geotri-edge-paths 1" || fail "no header line"
+    sed -n 3p out.paths | grep -q -x "coarse $nv $((3 * nf / 2))" || fail "not 'coarse $nv $((3 * nf / 2))'"
+    [ "$(tail -n +4 out.paths | wc -l)" -eq $((3 * nf / 2)) ] || fail "not one line per coarse edge"
+    tail -n +4 out.paths | awk '{ if (NF != $3 + 3 || $3 < 2 || $1 >= $2) exit 1 }' || fail "a malformed edge line"
     ;;
 
 usage_no_target)

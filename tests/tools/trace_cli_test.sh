@@ -40,12 +40,25 @@ trace_tripod() {
     expect_rc 0
 }
 
+# write_trivial_paths CHECKSUM FILE: the edge paths of the tripod traced onto itself: every coarse edge is one fine
+# edge. CHECKSUM is the tripod's, as a .gtri of it records it.
+write_trivial_paths() {
+    awk 'NF == 0 { next } { k++ } k == 2 { nv = $1; nf = $2; next }
+         k > 2 + nv && k <= 2 + nv + nf { for (i = 2; i <= 4; i++) { a = $i; b = $(i == 4 ? 2 : i + 1)
+             if (a < b) print a, b } }' "$tripod" | sort -n -k1,1 -k2,2 > edges.txt
+    local nv
+    nv=$(awk 'NF == 0 { next } { k++ } k == 2 { print $1; exit }' "$tripod")
+    { echo "geotri-edge-paths 1"; echo "fine $nv $1"; echo "coarse $nv $(wc -l < edges.txt)"
+      awk '{ print $1, $2, 2, $1, $2 }' edges.txt; } > "$2"
+    rm edges.txt
+}
+
 case "$case_name" in
 
 help_lists_every_option)
     run --help
     expect_rc 0
-    for option in FINE COARSE --output --json --quiet --threads --version --help; do
+    for option in FINE COARSE --output --paths --json --quiet --threads --version --help; do
         grep -q -- "$option" stdout || fail "--help does not mention $option"
     done
     ;;
@@ -226,6 +239,36 @@ error_coarse_on_another_mesh)
         expect_error_about "$cross"
         expect_no_output
     fi
+    ;;
+
+edge_paths_are_used)
+    trace_tripod
+    write_trivial_paths "$(sed -n 's/^fine_checksum //p' out/g.gtri)" in_tripod.paths
+    run in_meshes/tripod.off in_meshes/tripod.off --paths in_tripod.paths -o out/p.gtri --json
+    expect_rc 0
+    [ "$(json_value class_geodesics_differing)" = 0 ] || fail "one fine edge is its own class geodesic"
+    [ "$(json_value class_geodesics_kept)" = false ] || fail "class geodesics kept on a valid G"
+    grep -q "decimation's class" stderr || fail "no class summary on stderr"
+    ;;
+
+error_edge_paths_of_another_mesh)
+    trace_tripod
+    write_trivial_paths 0123456789abcdef in_tripod.paths
+    rm -f out/g.gtri
+    run in_meshes/tripod.off in_meshes/tripod.off --paths in_tripod.paths -o out/g.gtri
+    expect_error_about in_tripod.paths
+    grep -q "another fine mesh" stderr || fail "message does not say another fine mesh"
+    [ -z "$(ls -A out)" ] || fail "files left in out/: $(ls -A out)"
+    ;;
+
+error_truncated_edge_paths)
+    trace_tripod
+    write_trivial_paths "$(sed -n 's/^fine_checksum //p' out/g.gtri)" in_full.paths
+    head -n 10 in_full.paths > in_tripod.paths
+    rm -f out/g.gtri
+    run in_meshes/tripod.off in_meshes/tripod.off --paths in_tripod.paths -o out/g.gtri
+    expect_error_about in_tripod.paths
+    grep -q "truncated" stderr || fail "message does not say truncated"
     ;;
 
 error_unwritable_output)

@@ -2,6 +2,7 @@
 // Tracing: each coarse vertex located on T, then each coarse edge made the exact shortest geodesic between its
 // ends (DESIGN.md §3, §4).
 
+#include <geotri/edge_paths_io.h>
 #include <geotri/geodesic_triangulation.h>
 #include <geotri/mesh_io.h>
 
@@ -15,6 +16,12 @@ struct TraceOptions {
     int threads = 0;  ///< 0: as many as OpenMP likes; the result is the same for any count
     /// Called with (done, total) propagations; may be called from any thread but never concurrently.
     std::function<void(int, int)> progress;
+    /// The edge paths of the decimation that made the coarse mesh (geotri-decimate --paths), or null. When the
+    /// shortest geodesics do not make G valid, every edge is also straightened within its class: into the geodesic
+    /// homotopic to its path on T with the coarse vertices taken out (geodesic::straighten_path), which runs the way
+    /// round that the decimation meant. G keeps whichever set does better: the valid one, or the one with fewer
+    /// violations (the shortest on a tie).
+    const EdgePaths* edge_paths = nullptr;
 };
 
 struct TraceResult {
@@ -25,6 +32,11 @@ struct TraceResult {
     double longest_propagation = 0.0;    ///< the longest edge: the farthest that one propagation had to reach
     std::size_t windows_created = 0;     ///< summed over every propagation (libgeodesic's PropagationStats)
     std::size_t polyline_points = 0;     ///< summed over every edge polyline
+    /// With edge paths: edges whose geodesic in the decimation's class is not the shortest one, edges whose class
+    /// runs through another coarse vertex (they keep the shortest), and whether G holds the class geodesics.
+    int class_geodesics_differing = 0;
+    int class_geodesics_blocked = 0;
+    bool class_geodesics_kept = false;
     double seconds = 0.0;
 };
 
@@ -33,7 +45,8 @@ struct TraceResult {
 /// Each edge is traced from one of its ends, goal-directed; the result is bit-identical for any thread count.
 /// Throws InvalidInput when a coarse component does not lie on one fine component, when two coarse components lie
 /// on the same fine component, or when two coarse vertices land on the same point of T; NumericalError if
-/// libgeodesic finds no path between two ends on the same component. Progress goes through options.progress only.
+/// libgeodesic finds no path between two ends on the same component; IOError("NAME: problem") when the edge paths
+/// do not fit T or the coarse mesh. Progress goes through options.progress only.
 TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options = {});
 
 /// The coarse mesh of arrays as read_mesh() gives them, in the same vertex and face order, with the points as given.
