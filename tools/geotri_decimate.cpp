@@ -77,6 +77,7 @@ int run(tools::Tool& tool) {
     options.target_vertices = args.vertices;
     options.ratio = args.ratio;
     options.coarsest = args.coarsest;
+    options.edge_paths = !args.paths.empty();
     options.strategy = args.strategy == "priority-queue" ? geotri::DecimateStrategy::priority_queue
                                                          : geotri::DecimateStrategy::multiple_choice;
     options.progress = [&progress](const geotri::DecimateProgress& p) {

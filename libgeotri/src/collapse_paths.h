@@ -1,48 +1,76 @@
 #pragma once
-// What the edges of a decimated mesh are on the fine mesh: a path of fine vertices per edge, kept up to date through
-// halfedge collapses. Collapsing v0 into v1 drags every edge (v0, w) along the collapsed edge, so that the new edge
-// (v1, w) is the path from v1 to v0 followed by the path from v0 to w. These paths may overlap, but they keep the
-// homotopy class of each edge on the fine surface with the surviving vertices taken out, which is what a geodesic
-// of the edge must keep for the triangulation to be the decimated one (geodesic::straighten_path).
+// What the edges of a decimated mesh are on the fine mesh: a path of fine vertices per edge, kept through halfedge
+// collapses. Collapsing v0 into v1 drags every edge (v0, w) along the collapsed edge, so that the new edge (v1, w) is
+// the path from v1 to v0 followed by the path from v0 to w. These paths may overlap, but they keep the homotopy class
+// of each edge on the fine surface with the surviving vertices taken out, which is what a geodesic of the edge must
+// keep for the triangulation to be the decimated one (geodesic::straighten_path).
+//
+// A collapse must cost little, so a path is a node of a tree that is never copied: one fine edge, or two paths one
+// after the other. Paths are written out only at the end, for the edges that are left.
 
-#include <algorithm>
-#include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace geotri::detail {
 
 class CollapsePaths {
 public:
-    /// The path from fine vertex a to fine vertex b of the current edge (a, b); a single fine edge until a collapse
-    /// has dragged it.
-    std::vector<int> path(int a, int b) const {
-        const auto found = paths_.find(key(a, b));
-        if (found == paths_.end()) return {a, b};
-        std::vector<int> path = found->second;
-        if (path.front() != a) std::reverse(path.begin(), path.end());
+    /// A path, or -1 for the single fine edge between the ends of the edge that holds it.
+    using Ref = int;
+    static constexpr Ref k_single_edge = -1;
+
+    /// `ref`, held by an edge between fine vertices a and b, as a path from a to b.
+    Ref oriented(Ref ref, int a, int b) {
+        if (ref == k_single_edge) {
+            nodes_.push_back({a, b, -1, -1});
+            return 2 * static_cast<Ref>(nodes_.size() - 1);
+        }
+        return first(ref) == a ? ref : ref ^ 1;
+    }
+
+    /// The path `to` followed by `from`; `to` must end where `from` starts.
+    Ref join(Ref to, Ref from) {
+        nodes_.push_back({first(to), last(from), to, from});
+        return 2 * static_cast<Ref>(nodes_.size() - 1);
+    }
+
+    /// The fine vertices of `ref` from a to b, without steps straight back (…, x, y, x → …, x: y is a removed
+    /// vertex, so going there and back changes no class).
+    std::vector<int> vertices(Ref ref, int a, int b) {
+        std::vector<int> path;
+        std::vector<Ref> stack{oriented(ref, a, b)};
+        while (!stack.empty()) {
+            const Ref r = stack.back();
+            stack.pop_back();
+            const Node& node = nodes_[static_cast<std::size_t>(r / 2)];
+            const bool reversed = (r & 1) != 0;
+            if (node.left < 0) {
+                append(path, reversed ? node.last : node.first);
+                append(path, reversed ? node.first : node.last);
+            } else if (!reversed) {
+                stack.push_back(node.right);
+                stack.push_back(node.left);
+            } else {
+                stack.push_back(node.left ^ 1);
+                stack.push_back(node.right ^ 1);
+            }
+        }
         return path;
     }
 
-    /// Before v0 collapses into v1: `neighbours` are v0's neighbours other than v1 and the two apexes of the
-    /// collapsed edge (whose edges to v0 merge into their edges to v1, which keep their paths).
-    void collapse(int v0, int v1, const std::vector<int>& neighbours, const std::vector<int>& apexes) {
-        const std::vector<int> to_v0 = path(v1, v0);
-        for (const int w : neighbours) {
-            std::vector<int> dragged = to_v0;
-            for (const int x : path(v0, w)) append(dragged, x);
-            paths_.erase(key(v0, w));
-            if (dragged.size() > 2) paths_[key(v1, w)] = std::move(dragged);
-        }
-        for (const int w : apexes) paths_.erase(key(v0, w));
-        paths_.erase(key(v0, v1));
-    }
-
 private:
-    static std::uint64_t key(int a, int b) {
-        return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+    struct Node {
+        int first, last;  // fine vertices at its ends
+        Ref left, right;  // the two halves, or -1 for a single fine edge
+    };
+
+    int first(Ref r) const {
+        const Node& n = nodes_[static_cast<std::size_t>(r / 2)];
+        return (r & 1) ? n.last : n.first;
     }
-    // Appends x, dropping a step straight back (…, a, b, a → …, a): it goes to a removed vertex and returns.
+    int last(Ref r) const {
+        const Node& n = nodes_[static_cast<std::size_t>(r / 2)];
+        return (r & 1) ? n.first : n.last;
+    }
     static void append(std::vector<int>& path, int x) {
         if (!path.empty() && path.back() == x) return;
         if (path.size() >= 2 && path[path.size() - 2] == x) {
@@ -52,7 +80,7 @@ private:
         path.push_back(x);
     }
 
-    std::unordered_map<std::uint64_t, std::vector<int>> paths_;
+    std::vector<Node> nodes_;
 };
 
 }  // namespace geotri::detail

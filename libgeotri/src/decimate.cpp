@@ -73,7 +73,9 @@ struct ComponentState {
     CollapseLimits limits = k_rounds[0];
     double error_scale = 1.0;  // makes the quadric error scale-free, so that it fits a float priority
     double volume = 0.0;       // six times the component's signed volume now; collapses never change its sign
-    detail::CollapsePaths paths;  // what each edge is on T (fine indices)
+    bool edge_paths = true;  // DecimateOptions::edge_paths
+    OpenMesh::EPropHandleT<detail::CollapsePaths::Ref> path;  // what each edge is on T
+    detail::CollapsePaths paths;
 };
 
 // Most that a new triangle may fold against the unchanged triangle across its far edge: cos(177.4°). Normal checks
@@ -188,14 +190,7 @@ public:
 
     void preprocess_collapse(const CollapseInfo& ci) override {
         state_->volume += volume_change(ci);
-        MeshT& mesh = Base::mesh();
-        auto fine = [&](OpenMesh::VertexHandle v) { return mesh.property(state_->fine_index, v); };
-        std::vector<int> neighbours, apexes;
-        for (const auto w : mesh.vv_range(ci.v0)) {
-            if (w == ci.v1) continue;
-            (w == ci.vl || w == ci.vr ? apexes : neighbours).push_back(fine(w));
-        }
-        state_->paths.collapse(fine(ci.v0), fine(ci.v1), neighbours, apexes);
+        if (state_->edge_paths) drag_paths(ci);
     }
 
     void postprocess_collapse(const CollapseInfo& ci) override {
@@ -204,6 +199,26 @@ public:
     }
 
 private:
+    // Every edge (v0, w) becomes the path from v1 to v0 and on to w. The edges from v0 to the two apexes merge into
+    // those from v1, which keep their paths: both get them, whichever of the two OpenMesh keeps.
+    void drag_paths(const CollapseInfo& ci) {
+        MeshT& mesh = Base::mesh();
+        auto fine = [&](OpenMesh::VertexHandle v) { return mesh.property(state_->fine_index, v); };
+        auto path = [&](OpenMesh::HalfedgeHandle h) -> detail::CollapsePaths::Ref& {
+            return mesh.property(state_->path, mesh.edge_handle(h));
+        };
+        const detail::CollapsePaths::Ref to_v0 =
+            state_->paths.oriented(path(ci.v0v1), fine(ci.v1), fine(ci.v0));
+        for (const auto h : mesh.voh_range(ci.v0)) {
+            const auto w = mesh.to_vertex_handle(h);
+            if (w == ci.v1) continue;
+            if (w == ci.vl || w == ci.vr)
+                path(h) = path(mesh.find_halfedge(ci.v1, w));
+            else
+                path(h) = state_->paths.join(to_v0, state_->paths.oriented(path(h), fine(ci.v0), fine(w)));
+        }
+    }
+
     ComponentState* state_ = nullptr;
 };
 
@@ -485,7 +500,7 @@ std::vector<int> split_target(std::size_t target, const std::vector<DecimateComp
 }
 
 // Builds the component as an OpenMesh mesh, decimates it to `target_faces`, and returns its coarse vertices (fine
-// indices) and triangles (fine indices).
+// indices), its triangles (fine indices) and, when asked, the path of each of its edges (fine indices).
 void decimate_component(const FineMesh& fine, const ComponentInput& input, int target_faces,
                         const DecimateOptions& options, ProgressSink& sink, std::vector<int>& coarse_vertices,
                         std::vector<std::array<int, 3>>& coarse_triangles,
@@ -494,6 +509,8 @@ void decimate_component(const FineMesh& fine, const ComponentInput& input, int t
     ComponentState state;
     mesh.add_property(state.quadric);
     mesh.add_property(state.fine_index);
+    mesh.add_property(state.path);
+    state.edge_paths = options.edge_paths;
     mesh.reserve(input.vertices.size(), 3 * input.faces.size() / 2, input.faces.size());
     std::vector<OpenMesh::VertexHandle> handle;
     handle.reserve(input.vertices.size());
@@ -517,6 +534,8 @@ void decimate_component(const FineMesh& fine, const ComponentInput& input, int t
         if (!mesh.add_face(local_of(t[0]), local_of(t[1]), local_of(t[2])).is_valid())
             throw TopologyError(fine.path + ": face " + std::to_string(f) + " cannot be added to the coarse mesh");
     }
+
+    for (const auto eh : mesh.edges()) mesh.property(state.path, eh) = detail::CollapsePaths::k_single_edge;
 
     // Quadrics of the face planes, weighted by area.
     const double diagonal = (hi - lo).norm();
@@ -586,10 +605,12 @@ void decimate_component(const FineMesh& fine, const ComponentInput& input, int t
         coarse_triangles.push_back(t);
     }
     edge_paths.clear();
+    if (!state.edge_paths) return;
     for (const auto eh : mesh.edges()) {
         const auto h = mesh.halfedge_handle(eh, 0);
-        edge_paths.push_back(state.paths.path(mesh.property(state.fine_index, mesh.from_vertex_handle(h)),
-                                              mesh.property(state.fine_index, mesh.to_vertex_handle(h))));
+        edge_paths.push_back(state.paths.vertices(mesh.property(state.path, eh),
+                                                  mesh.property(state.fine_index, mesh.from_vertex_handle(h)),
+                                                  mesh.property(state.fine_index, mesh.to_vertex_handle(h))));
     }
 }
 

@@ -11,6 +11,8 @@
 namespace geotri {
 
 EdgePaths make_edge_paths(const FineMesh& fine, const DecimateResult& decimation) {
+    if (2 * decimation.edges.size() != 3 * decimation.coarse.triangles.size())
+        throw InvalidInput("make_edge_paths: the decimation kept no edge paths (DecimateOptions::edge_paths is off)");
     EdgePaths paths;
     paths.fine_checksum = fine.checksum;
     paths.fine_vertices = fine.mesh.num_vertices();

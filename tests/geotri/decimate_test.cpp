@@ -370,6 +370,17 @@ TEST(Decimate, progress_is_reported_and_can_stop_the_work) {
     expect_valid_decimation(fine, result);
 }
 
+TEST(Decimate, edge_paths_can_be_left_out) {
+    const FineMesh fine = fine_of(test::icosphere(3));
+    DecimateOptions options = faces_target(60);
+    const DecimateResult with = decimate(fine, options);
+    options.edge_paths = false;
+    const DecimateResult without = decimate(fine, options);
+    EXPECT_EQ(with.coarse.triangles, without.coarse.triangles);  // the same collapses
+    EXPECT_EQ(2 * with.edges.size(), 3 * with.coarse.triangles.size());
+    EXPECT_TRUE(without.edges.empty());
+}
+
 TEST(Decimate, min_faces_of_genus) {
     EXPECT_EQ(min_faces_of_genus(0), 4);
     EXPECT_EQ(min_faces_of_genus(1), 14);   // the 7-vertex torus

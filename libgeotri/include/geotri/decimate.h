@@ -44,6 +44,9 @@ struct DecimateOptions {
     /// faces per component.
     int samples = 8;
     std::uint64_t seed = 1;
+    /// Keep what each coarse edge is on T (DecimateResult::edges): about 8% more time and 20% more memory on a
+    /// 200k-face mesh. Off: `edges` stays empty.
+    bool edge_paths = true;
     /// Called now and then, from one thread at a time; returning false stops the decimation at a consistent state
     /// (DecimateResult::aborted).
     std::function<bool(const DecimateProgress&)> progress;
@@ -74,7 +77,7 @@ struct DecimateResult {
     /// their fine indices.
     MeshData coarse;
     std::vector<int> fine_vertex;  ///< per coarse vertex: its index in T
-    std::vector<DecimatedEdge> edges;  ///< every coarse edge, sorted by (a, b)
+    std::vector<DecimatedEdge> edges;  ///< every coarse edge, sorted by (a, b) (with DecimateOptions::edge_paths)
     std::vector<DecimateComponent> components;  ///< in T's component order (FineMesh::component)
     std::size_t target_faces = 0;  ///< the target in faces, all components (for coarsest: the sum of min_faces)
     /// Whether the coarse mesh has at most target_faces faces (target_vertices vertices when that was asked). False

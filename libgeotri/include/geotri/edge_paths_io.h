@@ -22,7 +22,7 @@ struct EdgePaths {
     std::vector<DecimatedEdge> edges;  ///< sorted by (a, b), a < b
 };
 
-/// The edge paths of a decimation of `fine`.
+/// The edge paths of a decimation of `fine`. Throws InvalidInput when it kept none (DecimateOptions::edge_paths).
 EdgePaths make_edge_paths(const FineMesh& fine, const DecimateResult& decimation);
 
 /// Writes to a temporary file in the same folder and renames it. Throws IOError when the file cannot be written.
