@@ -246,7 +246,8 @@ struct Layout {
 };
 
 // Moves the sleeve to the far side of every vertex where that side is shorter; where runs of faces around two
-// bends overlap, only the later one moves. Returns the moves made; sets *pinned_bend to a pinned vertex that needs one.
+// bends overlap, only the later one moves. Returns the moves made; sets *pinned_bend to a pinned vertex that needs
+// one.
 int move_bends(const Mesh& mesh, Sleeve& sleeve, const Layout& layout, const std::vector<unsigned char>& pinned,
                int* pinned_bend) {
     const std::vector<int>& faces = sleeve.faces();

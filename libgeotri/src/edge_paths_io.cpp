@@ -44,7 +44,8 @@ EdgePaths read_edge_paths(const std::string& path) {
     paths.name = path;
 
     auto w = detail::words(in.next("the header 'geotri-edge-paths 1'"));
-    if (w.size() != 2 || w[0] != "geotri-edge-paths") in.fail("not an edge paths file (expected 'geotri-edge-paths 1')");
+    if (w.size() != 2 || w[0] != "geotri-edge-paths")
+        in.fail("not an edge paths file (expected 'geotri-edge-paths 1')");
     if (detail::parse_count(in, w[1], "version") != k_edge_paths_version)
         in.fail("version " + std::string(w[1]) + " is not supported (this build reads version " +
                 std::to_string(k_edge_paths_version) + ")");

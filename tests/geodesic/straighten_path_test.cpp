@@ -57,7 +57,8 @@ TEST(StraightenPath, StaircaseOnAFlatGridBecomesTheStraightSegment) {
     for (const double perturbation : {0.0, 0.2}) {
         const TriangleMesh arrays = flat_grid(n, n, 1.0, 1.0, perturbation, 3);
         const geodesic::Mesh mesh = arrays.to_mesh();
-        for (const auto& [i0, j0, i1, j1] : std::vector<std::array<int, 4>>{{1, 1, 11, 7}, {2, 10, 9, 1}, {0, 0, 12, 12}}) {
+        const std::vector<std::array<int, 4>> ends{{1, 1, 11, 7}, {2, 10, 9, 1}, {0, 0, 12, 12}};
+        for (const auto& [i0, j0, i1, j1] : ends) {
             const std::vector<int> path = staircase(n, i0, j0, i1, j1);
             const auto result = geodesic::straighten_path(mesh, path, pins(mesh));
             const std::string name = "perturbation " + std::to_string(perturbation) + ", from " +
