@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -18,8 +19,8 @@ using Eigen::Vector2d;
 constexpr double k_pi = 3.14159265358979323846;
 // A bend with this little less than π on its far side is rounding, not a shorter way round.
 constexpr double k_angle_slack = 1e-12;
-// Passes over the sleeve before giving up; each pass that moves shortens the path, so this is never reached.
-constexpr int k_max_passes = 100000;
+// Passes in a row that move the sleeve without shortening the path, before giving up: every move should shorten it.
+constexpr int k_max_idle_passes = 8;
 
 double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 // Positive when c lies to the left of the line from a to b.
@@ -245,11 +246,17 @@ struct Layout {
     std::vector<Bend> bends;
 };
 
+// Where a bend needs a move that cannot be made.
+struct Stuck {
+    int pinned = -1;    // a pinned vertex
+    int boundary = -1;  // a boundary vertex, or one whose faces around do not close
+};
+
 // Moves the sleeve to the far side of every vertex where that side is shorter; where runs of faces around two
-// bends overlap, only the later one moves. Returns the moves made; sets *pinned_bend to a pinned vertex that needs
-// one.
+// bends overlap, only the later one moves. Returns the moves made, and in `stuck` the bends that need one that
+// cannot be made.
 int move_bends(const Mesh& mesh, Sleeve& sleeve, const Layout& layout, const std::vector<unsigned char>& pinned,
-               int* pinned_bend) {
+               Stuck& stuck) {
     const std::vector<int>& faces = sleeve.faces();
     std::vector<Sleeve::Replacement> replacements;
     std::size_t limit = faces.size();  // runs must end before this (below the last one moved)
@@ -277,15 +284,22 @@ int move_bends(const Mesh& mesh, Sleeve& sleeve, const Layout& layout, const std
         sleeve_side -= angle_between(outer_direction(b, b - 1), to_next);
         if (mesh.cone_angle(w) - sleeve_side >= k_pi - k_angle_slack) continue;
         if (pinned[std::size_t(w)]) {
-            *pinned_bend = w;
+            stuck.pinned = w;
             continue;
         }
-        if (b >= limit || mesh.is_boundary_vertex(w)) continue;
+        if (mesh.is_boundary_vertex(w)) {
+            stuck.boundary = w;
+            continue;
+        }
+        if (b >= limit) continue;
         // A run that turns more than once around w (its faces again) unwinds; any other goes round the other way.
         const bool ccw = turns_ccw(mesh, faces[a], faces[a + 1], w);
         auto run = fan_between(mesh, faces[a], faces[b], w, ccw);
         if (run && run->size() >= b - a + 1) run = fan_between(mesh, faces[a], faces[b], w, !ccw);
-        if (!run) continue;
+        if (!run) {
+            stuck.boundary = w;
+            continue;
+        }
         replacements.push_back({a, b, std::move(*run)});
         limit = a;
     }
@@ -371,17 +385,26 @@ StraightenResult straighten_path(const Mesh& mesh, const std::vector<int>& verti
     sleeve.trim_ends();
 
     Layout layout;
-    for (int pass = 0;; ++pass) {
-        if (pass == k_max_passes) throw NumericalError("straighten_path: the sleeve did not settle");
+    double length = std::numeric_limits<double>::infinity();
+    for (int idle = 0;;) {
         layout.portals = unfold(mesh, sleeve);
         layout.bends = funnel(layout.portals);
-        int pinned_bend = -1;
-        const int moves = move_bends(mesh, sleeve, layout, pinned, &pinned_bend);
+        double now = 0.0;
+        for (std::size_t k = 0; k + 1 < layout.bends.size(); ++k)
+            now += (layout.bends[k + 1].xy - layout.bends[k].xy).norm();
+        idle = now < length ? 0 : idle + 1;
+        if (idle == k_max_idle_passes) throw NumericalError("straighten_path: the sleeve did not settle");
+        length = std::min(length, now);
+        Stuck stuck;
+        const int moves = move_bends(mesh, sleeve, layout, pinned, stuck);
         result.moves += moves;
         if (moves > 0) continue;
-        if (pinned_bend >= 0) {
+        if (stuck.pinned >= 0) {
             result.status = StraightenStatus::through_pinned_vertex;
-            result.pinned_vertex = pinned_bend;
+            result.vertex = stuck.pinned;
+        } else if (stuck.boundary >= 0) {
+            result.status = StraightenStatus::bends_at_boundary;
+            result.vertex = stuck.boundary;
         }
         break;
     }
@@ -390,7 +413,7 @@ StraightenResult straighten_path(const Mesh& mesh, const std::vector<int>& verti
         const SurfacePoint& p = result.path[i];
         if (p.kind == PointKind::vertex && pinned[std::size_t(p.vertex)]) {
             result.status = StraightenStatus::through_pinned_vertex;
-            result.pinned_vertex = p.vertex;
+            result.vertex = p.vertex;
             break;
         }
     }

@@ -23,11 +23,22 @@ int violations(const ValidationReport& report) {
     return std::accumulate(report.violation_count.begin(), report.violation_count.end(), 0);
 }
 
+// Whether two polylines are the same geodesic: lengths that differ are not, and neither are two routes of one
+// length (around a symmetric part): their points must agree too, to the tolerance of two propagations.
+bool same_geodesic(const geodesic::Mesh& mesh, const Polyline& p, double p_length, const Polyline& q,
+                   double q_length) {
+    if (std::abs(p_length - q_length) > k_same_length * q_length || p.size() != q.size()) return false;
+    const double tolerance = 1e-9 * mesh.size();
+    for (std::size_t i = 0; i < p.size(); ++i)
+        if ((mesh.point(p[i]) - mesh.point(q[i])).norm() > tolerance) return false;
+    return true;
+}
+
 // The fine vertex where coarse vertex v lies; the paths of a decimation start and end on fine vertices.
 int fine_vertex_of(const GeodesicTriangulation& g, const EdgePaths& paths, OpenMesh::VertexHandle v) {
     const SurfacePoint& p = g.location(v);
     if (p.kind != geodesic::PointKind::vertex)
-        throw InvalidInput(paths.name + ": coarse vertex " + std::to_string(v.idx()) +
+        throw IOError(paths.name + ": coarse vertex " + std::to_string(v.idx()) +
                            " does not lie on a vertex of the fine mesh: the edge paths were made for another coarse "
                            "mesh");
     return p.vertex;
@@ -35,7 +46,7 @@ int fine_vertex_of(const GeodesicTriangulation& g, const EdgePaths& paths, OpenM
 
 }  // namespace
 
-void prefer_class_geodesics(GeodesicTriangulation& g, const EdgePaths& paths, int threads, TraceResult& result) {
+std::vector<std::vector<int>> reference_paths(const GeodesicTriangulation& g, const EdgePaths& paths) {
     const FineMesh& fine = g.fine();
     const CoarseMesh& coarse = g.coarse();
     const std::string& name = paths.name;
@@ -46,9 +57,6 @@ void prefer_class_geodesics(GeodesicTriangulation& g, const EdgePaths& paths, in
                            std::to_string(paths.coarse_vertices) + " vertices and " +
                            std::to_string(paths.edges.size()) + " edges, not " + std::to_string(coarse.n_vertices()) +
                            " and " + std::to_string(coarse.n_edges()) + ")");
-
-    std::vector<unsigned char> pinned(static_cast<std::size_t>(fine.mesh.num_vertices()), 0);
-    for (const auto v : coarse.vertices()) pinned[static_cast<std::size_t>(fine_vertex_of(g, paths, v))] = 1;
 
     // Per edge, in edge order: the path of fine vertices along its first halfedge.
     std::vector<std::vector<int>> reference(coarse.n_edges());
@@ -72,6 +80,16 @@ void prefer_class_geodesics(GeodesicTriangulation& g, const EdgePaths& paths, in
         reference[static_cast<std::size_t>(e.idx())] = std::move(path);
     }
 
+    return reference;
+}
+
+void prefer_class_geodesics(GeodesicTriangulation& g, const std::vector<std::vector<int>>& reference,
+                            const std::string& name, int threads, TraceResult& result) {
+    const FineMesh& fine = g.fine();
+    const CoarseMesh& coarse = g.coarse();
+    std::vector<unsigned char> pinned(static_cast<std::size_t>(fine.mesh.num_vertices()), 0);
+    for (const auto v : coarse.vertices()) pinned[static_cast<std::size_t>(g.location(v).vertex)] = 1;
+
     const long total = static_cast<long>(reference.size());
     std::vector<std::optional<Polyline>> straightened(reference.size());
     std::vector<unsigned char> blocked(reference.size(), 0);
@@ -80,15 +98,30 @@ void prefer_class_geodesics(GeodesicTriangulation& g, const EdgePaths& paths, in
     for (long i = 0; i < total; ++i) {
         const std::size_t e = static_cast<std::size_t>(i);
         try {
+            // A class can hold several geodesics where T is positively curved, and straightening from either
+            // end may find another: the shorter one does not depend on the edge's orientation.
             geodesic::StraightenResult s = geodesic::straighten_path(fine.mesh, reference[e], pinned);
+            std::vector<int> backwards(reference[e].rbegin(), reference[e].rend());
+            geodesic::StraightenResult r = geodesic::straighten_path(fine.mesh, backwards, pinned);
+            if (r.status == geodesic::StraightenStatus::geodesic &&
+                (s.status != geodesic::StraightenStatus::geodesic || r.length < s.length * (1 - 1e-12))) {
+                std::reverse(r.path.begin(), r.path.end());
+                s = std::move(r);
+            }
             if (s.status != geodesic::StraightenStatus::geodesic) {
                 blocked[e] = 1;
                 continue;
             }
-            const double shortest = g.length(OpenMesh::EdgeHandle(static_cast<int>(e)));
-            if (std::abs(s.length - shortest) > k_same_length * shortest) straightened[e] = std::move(s.path);
+            const OpenMesh::EdgeHandle edge(static_cast<int>(e));
+            if (!same_geodesic(fine.mesh, s.path, s.length, g.polyline(edge), g.length(edge)))
+                straightened[e] = std::move(s.path);
+        } catch (const NumericalError&) {  // no class geodesic found: the edge keeps its shortest one
+            blocked[e] = 1;
         } catch (const InvalidInput& error) {  // a path that is not one on T
-            errors[e] = std::make_exception_ptr(IOError(name + ": " + error.what()));
+            const auto h = coarse.halfedge_handle(OpenMesh::EdgeHandle(static_cast<int>(e)), 0);
+            const auto [a, b] = std::minmax(coarse.from_vertex_handle(h).idx(), coarse.to_vertex_handle(h).idx());
+            errors[e] = std::make_exception_ptr(IOError(name + ": the path of coarse edge (" + std::to_string(a) +
+                                                        ", " + std::to_string(b) + "): " + error.what()));
         } catch (...) {
             errors[e] = std::current_exception();
         }

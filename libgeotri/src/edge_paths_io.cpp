@@ -14,6 +14,7 @@ EdgePaths make_edge_paths(const FineMesh& fine, const DecimateResult& decimation
     if (2 * decimation.edges.size() != 3 * decimation.coarse.triangles.size())
         throw InvalidInput("make_edge_paths: the decimation kept no edge paths (DecimateOptions::edge_paths is off)");
     EdgePaths paths;
+    paths.name = "the decimation's edge paths";
     paths.fine_checksum = fine.checksum;
     paths.fine_vertices = fine.mesh.num_vertices();
     paths.coarse_vertices = static_cast<int>(decimation.coarse.positions.size());
@@ -64,7 +65,6 @@ EdgePaths read_edge_paths(const std::string& path) {
     paths.coarse_vertices = detail::parse_count(in, w[1], "vertex count");
     const int num_edges = detail::parse_count(in, w[2], "edge count");
 
-    paths.edges.reserve(static_cast<std::size_t>(num_edges));
     for (int e = 0; e < num_edges; ++e) {
         w = detail::words(in.next("an edge 'A B N V1 ... VN'"));
         if (w.size() < 3) in.fail("expected an edge 'A B N V1 ... VN'");

@@ -351,6 +351,8 @@ TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options) {
     TraceResult result;
     locate_vertices(g, result);
     check_locations(g);
+    std::vector<std::vector<int>> reference;  // before tracing, so that paths that do not fit fail at once
+    if (options.edge_paths) reference = detail::reference_paths(g, *options.edge_paths);
 
     const std::vector<EdgeToTrace> edges = edges_to_trace(g);
     const long total = static_cast<long>(edges.size());
@@ -418,7 +420,7 @@ TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options) {
     }
     result.propagations = static_cast<int>(total);
     if (options.edge_paths) {
-        detail::prefer_class_geodesics(g, *options.edge_paths, threads, result);
+        detail::prefer_class_geodesics(g, reference, options.edge_paths->name, threads, result);
         result.polyline_points = 0;
         for (const auto e : g.coarse().edges()) result.polyline_points += g.polyline(e).size();
     }

@@ -93,7 +93,7 @@ TEST(StraightenPath, KeepsItsSideOfAPinnedVertex) {
 
     const auto above = geodesic::straighten_path(mesh, around_row(8), pins(mesh, {pinned}));
     EXPECT_EQ(above.status, StraightenStatus::through_pinned_vertex);
-    EXPECT_EQ(above.pinned_vertex, pinned);
+    EXPECT_EQ(above.vertex, pinned);
     EXPECT_NEAR(above.length, 2.0 * std::hypot(0.5, 0.1), 1e-14);
 
     // Without the pin, both sides are the same class.
@@ -199,6 +199,19 @@ TEST(StraightenPath, EdgePathsOnCurvedMeshesBecomeGeodesics) {
             expect_geodesic(arrays, result, case_name);
         }
     }
+}
+
+TEST(StraightenPath, WrapsAroundTheReflexCornerOfAnL) {
+    // The L of unit cells: x in [0, 1] up to y = 3, y in [0, 1] out to x = 3. From the top of one arm to the end of
+    // the other, the shortest path bends at the reflex corner (1, 1), on the boundary: not a geodesic.
+    const TriangleMesh arrays = flat_cell_polygon(l_shape_cells(), 4);
+    const geodesic::Mesh mesh = arrays.to_mesh();
+    const Eigen::Vector3d from(0.5, 2.75, 0.0), to(2.75, 0.5, 0.0), corner(1.0, 1.0, 0.0);
+    const std::vector<int> path = edge_path(mesh, nearest_vertex(mesh, from), nearest_vertex(mesh, to));
+    const auto result = geodesic::straighten_path(mesh, path, pins(mesh));
+    EXPECT_EQ(result.status, StraightenStatus::bends_at_boundary);
+    EXPECT_EQ(result.vertex, nearest_vertex(mesh, corner));
+    EXPECT_NEAR(result.length, (corner - from).norm() + (to - corner).norm(), 1e-12);
 }
 
 TEST(StraightenPath, OneEdgeIsItself) {

@@ -508,6 +508,7 @@ TEST_F(Trace, edge_paths_files_read_back_and_bad_ones_are_refused) {
     refused("geotri-edge-paths 2\n", "version 2 is not supported");
     refused("OFF\n", "not an edge paths file");
     refused(whole + "0 1 2 0 1\n", "unexpected content");
+    refused("geotri-edge-paths 1\nfine 10 0123456789abcdef\ncoarse 4 2000000000\n", "truncated");  // no huge reserve
     std::string out_of_range = whole;
     out_of_range.replace(out_of_range.rfind(' ') + 1, std::string::npos, "99999999\n");
     refused(out_of_range, "out of range");

@@ -15,7 +15,7 @@ namespace geotri {
 constexpr int k_edge_paths_version = 1;
 
 struct EdgePaths {
-    std::string name;                ///< the file it was read from, for messages (empty when not read)
+    std::string name;                ///< the file it was read from, for messages
     std::uint64_t fine_checksum = 0; ///< of T (FineMesh::checksum)
     int fine_vertices = 0;           ///< of T
     int coarse_vertices = 0;

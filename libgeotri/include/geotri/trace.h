@@ -16,11 +16,11 @@ struct TraceOptions {
     int threads = 0;  ///< 0: as many as OpenMP likes; the result is the same for any count
     /// Called with (done, total) propagations; may be called from any thread but never concurrently.
     std::function<void(int, int)> progress;
-    /// The edge paths of the decimation that made the coarse mesh (geotri-decimate --paths), or null. When the
-    /// shortest geodesics do not make G valid, every edge is also straightened within its class: into the geodesic
-    /// homotopic to its path on T with the coarse vertices taken out (geodesic::straighten_path), which runs the way
-    /// round that the decimation meant. G keeps whichever set does better: the valid one, or the one with fewer
-    /// violations (the shortest on a tie).
+    /// The edge paths of the decimation that made the coarse mesh (geotri-decimate --paths), or null. With them,
+    /// every edge is also straightened within its class: into the geodesic homotopic to its path on T with the
+    /// coarse vertices taken out (geodesic::straighten_path), which runs the way round that the decimation meant.
+    /// When the shortest geodesics do not make G valid, G keeps whichever set does better: the valid one, or the
+    /// one with fewer violations (the shortest on a tie).
     const EdgePaths* edge_paths = nullptr;
 };
 
@@ -32,8 +32,9 @@ struct TraceResult {
     double longest_propagation = 0.0;    ///< the longest edge: the farthest that one propagation had to reach
     std::size_t windows_created = 0;     ///< summed over every propagation (libgeodesic's PropagationStats)
     std::size_t polyline_points = 0;     ///< summed over every edge polyline
-    /// With edge paths: edges whose geodesic in the decimation's class is not the shortest one, edges whose class
-    /// runs through another coarse vertex (they keep the shortest), and whether G holds the class geodesics.
+    /// With edge paths: edges whose geodesic in the decimation's class is another one than the shortest, edges
+    /// whose class runs through another coarse vertex (they keep the shortest), and whether G holds the class
+    /// geodesics.
     int class_geodesics_differing = 0;
     int class_geodesics_blocked = 0;
     bool class_geodesics_kept = false;
