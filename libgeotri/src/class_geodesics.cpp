@@ -77,6 +77,11 @@ std::vector<std::vector<int>> reference_paths(const GeodesicTriangulation& g, co
             path.back() != fine_vertex_of(g, paths, coarse.vertex_handle(static_cast<unsigned>(to))))
             throw IOError(name + ": the path of coarse edge (" + std::to_string(key.a) + ", " +
                                std::to_string(key.b) + ") does not join the fine vertices of its ends");
+        for (std::size_t i = 0; i + 1 < path.size(); ++i)
+            if (fine.mesh.find_halfedge(path[i], path[i + 1]) < 0 && fine.mesh.find_halfedge(path[i + 1], path[i]) < 0)
+                throw IOError(name + ": the path of coarse edge (" + std::to_string(key.a) + ", " +
+                              std::to_string(key.b) + ") jumps from fine vertex " + std::to_string(path[i]) + " to " +
+                              std::to_string(path[i + 1]) + ", which share no edge");
         reference[static_cast<std::size_t>(e.idx())] = std::move(path);
     }
 
@@ -119,9 +124,10 @@ void prefer_class_geodesics(GeodesicTriangulation& g, const std::vector<std::vec
             blocked[e] = 1;
         } catch (const InvalidInput& error) {  // a path that is not one on T
             const auto h = coarse.halfedge_handle(OpenMesh::EdgeHandle(static_cast<int>(e)), 0);
-            const auto [a, b] = std::minmax(coarse.from_vertex_handle(h).idx(), coarse.to_vertex_handle(h).idx());
-            errors[e] = std::make_exception_ptr(IOError(name + ": the path of coarse edge (" + std::to_string(a) +
-                                                        ", " + std::to_string(b) + "): " + error.what()));
+            const int from = coarse.from_vertex_handle(h).idx(), to = coarse.to_vertex_handle(h).idx();
+            errors[e] = std::make_exception_ptr(
+                IOError(name + ": the path of coarse edge (" + std::to_string(std::min(from, to)) + ", " +
+                        std::to_string(std::max(from, to)) + "): " + error.what()));
         } catch (...) {
             errors[e] = std::current_exception();
         }

@@ -467,7 +467,14 @@ TEST_F(Trace, edge_paths_of_another_mesh_are_refused) {
     geotri::EdgePaths broken = paths;
     broken.edges[0].fine_path.insert(broken.edges[0].fine_path.begin() + 1, broken.edges[5].fine_path.back());
     with_paths.edge_paths = &broken;
-    EXPECT_THROW(trace_with(decimated.coarse), geotri::IOError);
+    try {
+        trace_with(decimated.coarse);
+        ADD_FAILURE() << "a path that jumps between fine vertices was accepted";
+    } catch (const geotri::IOError& e) {
+        const std::string expected = "sphere.paths: the path of coarse edge (" + std::to_string(broken.edges[0].a) +
+                                     ", " + std::to_string(broken.edges[0].b) + ")";
+        EXPECT_EQ(std::string(e.what()).rfind(expected, 0), 0u) << e.what();
+    }
 }
 
 TEST_F(Trace, edge_paths_files_read_back_and_bad_ones_are_refused) {
