@@ -25,8 +25,7 @@ int violations(const ValidationReport& report) {
 
 // Whether two polylines are the same geodesic: lengths that differ are not, and neither are two routes of one
 // length (around a symmetric part): their points must agree too, to the tolerance of two propagations.
-bool same_geodesic(const geodesic::Mesh& mesh, const Polyline& p, double p_length, const Polyline& q,
-                   double q_length) {
+bool same_geodesic(const geodesic::Mesh& mesh, const Polyline& p, double p_length, const Polyline& q, double q_length) {
     if (std::abs(p_length - q_length) > k_same_length * q_length || p.size() != q.size()) return false;
     const double tolerance = 1e-9 * mesh.size();
     for (std::size_t i = 0; i < p.size(); ++i)
@@ -39,8 +38,8 @@ int fine_vertex_of(const GeodesicTriangulation& g, const EdgePaths& paths, OpenM
     const SurfacePoint& p = g.location(v);
     if (p.kind != geodesic::PointKind::vertex)
         throw IOError(paths.name + ": coarse vertex " + std::to_string(v.idx()) +
-                           " does not lie on a vertex of the fine mesh: the edge paths were made for another coarse "
-                           "mesh");
+                      " does not lie on a vertex of the fine mesh: the edge paths were made for another coarse "
+                      "mesh");
     return p.vertex;
 }
 
@@ -54,9 +53,9 @@ std::vector<std::vector<int>> reference_paths(const GeodesicTriangulation& g, co
         throw IOError(name + ": the edge paths were made for another fine mesh (checksum or vertex count differ)");
     if (paths.coarse_vertices != static_cast<int>(coarse.n_vertices()) || paths.edges.size() != coarse.n_edges())
         throw IOError(name + ": the edge paths were made for another coarse mesh (" +
-                           std::to_string(paths.coarse_vertices) + " vertices and " +
-                           std::to_string(paths.edges.size()) + " edges, not " + std::to_string(coarse.n_vertices()) +
-                           " and " + std::to_string(coarse.n_edges()) + ")");
+                      std::to_string(paths.coarse_vertices) + " vertices and " + std::to_string(paths.edges.size()) +
+                      " edges, not " + std::to_string(coarse.n_vertices()) + " and " +
+                      std::to_string(coarse.n_edges()) + ")");
 
     // Per edge, in edge order: the path of fine vertices along its first halfedge.
     std::vector<std::vector<int>> reference(coarse.n_edges());
@@ -64,19 +63,18 @@ std::vector<std::vector<int>> reference_paths(const GeodesicTriangulation& g, co
         const auto h = coarse.halfedge_handle(e, 0);
         const int from = coarse.from_vertex_handle(h).idx(), to = coarse.to_vertex_handle(h).idx();
         const DecimatedEdge key{std::min(from, to), std::max(from, to), {}};
-        const auto found = std::lower_bound(paths.edges.begin(), paths.edges.end(), key,
-                                            [](const DecimatedEdge& x, const DecimatedEdge& y) {
-                                                return std::tie(x.a, x.b) < std::tie(y.a, y.b);
-                                            });
+        const auto found = std::lower_bound(
+            paths.edges.begin(), paths.edges.end(), key,
+            [](const DecimatedEdge& x, const DecimatedEdge& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
         if (found == paths.edges.end() || found->a != key.a || found->b != key.b)
             throw IOError(name + ": coarse edge (" + std::to_string(key.a) + ", " + std::to_string(key.b) +
-                               ") has no path: the edge paths were made for another coarse mesh");
+                          ") has no path: the edge paths were made for another coarse mesh");
         std::vector<int> path = found->fine_path;
         if (from != key.a) std::reverse(path.begin(), path.end());
         if (path.front() != fine_vertex_of(g, paths, coarse.vertex_handle(static_cast<unsigned>(from))) ||
             path.back() != fine_vertex_of(g, paths, coarse.vertex_handle(static_cast<unsigned>(to))))
-            throw IOError(name + ": the path of coarse edge (" + std::to_string(key.a) + ", " +
-                               std::to_string(key.b) + ") does not join the fine vertices of its ends");
+            throw IOError(name + ": the path of coarse edge (" + std::to_string(key.a) + ", " + std::to_string(key.b) +
+                          ") does not join the fine vertices of its ends");
         for (std::size_t i = 0; i + 1 < path.size(); ++i)
             if (fine.mesh.find_halfedge(path[i], path[i + 1]) < 0 && fine.mesh.find_halfedge(path[i + 1], path[i]) < 0)
                 throw IOError(name + ": the path of coarse edge (" + std::to_string(key.a) + ", " +
@@ -125,9 +123,9 @@ void prefer_class_geodesics(GeodesicTriangulation& g, const std::vector<std::vec
         } catch (const InvalidInput& error) {  // a path that is not one on T
             const auto h = coarse.halfedge_handle(OpenMesh::EdgeHandle(static_cast<int>(e)), 0);
             const int from = coarse.from_vertex_handle(h).idx(), to = coarse.to_vertex_handle(h).idx();
-            errors[e] = std::make_exception_ptr(
-                IOError(name + ": the path of coarse edge (" + std::to_string(std::min(from, to)) + ", " +
-                        std::to_string(std::max(from, to)) + "): " + error.what()));
+            errors[e] = std::make_exception_ptr(IOError(name + ": the path of coarse edge (" +
+                                                        std::to_string(std::min(from, to)) + ", " +
+                                                        std::to_string(std::max(from, to)) + "): " + error.what()));
         } catch (...) {
             errors[e] = std::current_exception();
         }
