@@ -15,6 +15,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 namespace {
@@ -65,6 +66,12 @@ int run(tools::Tool& tool) {
     app.add_option("--paths", args.paths,
                    "Also write what each coarse edge is on the input, for geotri-trace --paths (a text file)");
     tool.parse();
+    auto same_file = [](const std::string& a, const std::string& b) {
+        namespace fs = std::filesystem;
+        return fs::weakly_canonical(fs::absolute(a)) == fs::weakly_canonical(fs::absolute(b));
+    };
+    if (!args.paths.empty() && (same_file(args.paths, args.output) || same_file(args.paths, args.input)))
+        throw CLI::ValidationError("--paths must name another file than the input and the output");
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + args.input);

@@ -56,6 +56,13 @@ usage_no_arguments)
     expect_usage_error
     ;;
 
+usage_paths_same_as_output)
+    run "$bob" -o out.off --faces 60 --paths ./out.off
+    expect_usage_error
+    grep -q -- "--paths" stderr || fail "message does not name --paths"
+    expect_no_output
+    ;;
+
 edge_paths_are_written)
     # One line per coarse edge (3F/2 of them), each a path of fine vertices from its first coarse vertex's input
     # vertex to its second's.
