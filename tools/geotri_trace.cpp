@@ -79,7 +79,7 @@ int run(tools::Tool& tool) {
 
     progress.stage("checking");
     const double check_start = tools::now_seconds();
-    const geotri::ValidationReport report = geotri::validate(g);
+    const geotri::ValidationReport report = traced.report ? *traced.report : geotri::validate(g);
     const double check_seconds = tools::now_seconds() - check_start;
 
     progress.stage("writing " + args.output);

@@ -138,15 +138,21 @@ void prefer_class_geodesics(GeodesicTriangulation& g, const std::vector<std::vec
     }
     if (result.class_geodesics_differing == 0) return;
 
-    const ValidationReport shortest = validate(g);
-    if (shortest.valid) return;
+    ValidationReport shortest = validate(g);
+    if (shortest.valid) {
+        result.report = std::move(shortest);
+        return;
+    }
     GeodesicTriangulation candidate = g;
     for (const auto e : coarse.edges())
         if (auto& path = straightened[static_cast<std::size_t>(e.idx())]) candidate.set_polyline(e, std::move(*path));
-    const ValidationReport by_class = validate(candidate);
+    ValidationReport by_class = validate(candidate);
     if (by_class.valid || violations(by_class) < violations(shortest)) {
         g = std::move(candidate);
         result.class_geodesics_kept = true;
+        result.report = std::move(by_class);
+    } else {
+        result.report = std::move(shortest);
     }
 }
 

@@ -433,6 +433,9 @@ TEST_F(Trace, edge_paths_keep_the_decimated_triangulation) {
         const geotri::ValidationReport report = geotri::validate(g);
         EXPECT_TRUE(report.valid) << name << ": " << report.violation_count[0] << ", " << report.violation_count[1]
                                   << ", " << report.violation_count[2] << ", " << report.violation_count[3];
+        ASSERT_TRUE(result.report.has_value()) << name;  // the check that chose the set, of G as returned
+        EXPECT_EQ(result.report->valid, report.valid) << name;
+        EXPECT_EQ(result.report->violation_count, report.violation_count) << name;
         // The class geodesics are longer than the shortest ones where they differ, never shorter.
         int longer = 0;
         for (const auto e : g.coarse().edges()) {

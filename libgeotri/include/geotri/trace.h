@@ -5,9 +5,11 @@
 #include <geotri/edge_paths_io.h>
 #include <geotri/geodesic_triangulation.h>
 #include <geotri/mesh_io.h>
+#include <geotri/validate.h>
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace geotri {
@@ -38,6 +40,9 @@ struct TraceResult {
     int class_geodesics_differing = 0;
     int class_geodesics_blocked = 0;
     bool class_geodesics_kept = false;
+    /// The full validation of G as returned, when choosing between the two sets made one (callers need not
+    /// validate it again).
+    std::optional<ValidationReport> report;
     double seconds = 0.0;
 };
 
