@@ -57,6 +57,17 @@ double corner_sum(const Mesh& mesh, const std::vector<int>& faces, int v) {
     return sum;
 }
 
+// Appends x to `items` unless it repeats the last one, and drops a step straight back (…, a, b, a → …, a): going
+// into a face or to a vertex and back again changes no class.
+void append_reduced(std::vector<int>& items, int x) {
+    if (!items.empty() && items.back() == x) return;
+    if (items.size() >= 2 && items[items.size() - 2] == x) {
+        items.pop_back();
+        return;
+    }
+    items.push_back(x);
+}
+
 // A sequence of faces, each sharing an edge with the next, with the path's start in the first and its end in the
 // last. Appending keeps it reduced: no face twice in a row, and no step into a face and straight back (f, g, f),
 // which only goes back and forth across one edge.
@@ -64,14 +75,7 @@ class Sleeve {
 public:
     Sleeve(const Mesh& mesh, int start, int end) : mesh_(mesh), start_(start), end_(end) {}
 
-    void append(int f) {
-        if (!faces_.empty() && faces_.back() == f) return;
-        if (faces_.size() >= 2 && faces_[faces_.size() - 2] == f) {
-            faces_.pop_back();
-            return;
-        }
-        faces_.push_back(f);
-    }
+    void append(int f) { append_reduced(faces_, f); }
 
     // Leaves out the faces around the ends that the path need not cross: turning around an end is free.
     void trim_ends() {
@@ -345,12 +349,7 @@ StraightenResult straighten_path(const Mesh& mesh, const std::vector<int>& verti
     for (const int v : vertices) {
         if (v < 0 || v >= mesh.num_vertices())
             throw InvalidInput("straighten_path: vertex " + std::to_string(v) + " is out of range");
-        if (!path.empty() && path.back() == v) continue;
-        if (path.size() >= 2 && path[path.size() - 2] == v) {
-            path.pop_back();
-            continue;
-        }
-        path.push_back(v);
+        append_reduced(path, v);
     }
     if (path.size() < 2 || path.front() == path.back())
         throw InvalidInput("straighten_path: the path needs two different ends");

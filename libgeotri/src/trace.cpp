@@ -412,18 +412,14 @@ TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options) {
         if (e) std::rethrow_exception(e);
 
     for (std::size_t i = 0; i < edges.size(); ++i) {
-        result.polyline_points += paths[i].size();
         g.set_path(edges[i].halfedge, std::move(paths[i]));
         result.longest_propagation =
             std::max(result.longest_propagation, g.length(g.coarse().edge_handle(edges[i].halfedge)));
         result.windows_created += windows[i];
     }
     result.propagations = static_cast<int>(total);
-    if (options.edge_paths) {
-        detail::prefer_class_geodesics(g, reference, options.edge_paths->name, threads, result);
-        result.polyline_points = 0;
-        for (const auto e : g.coarse().edges()) result.polyline_points += g.polyline(e).size();
-    }
+    if (options.edge_paths) detail::prefer_class_geodesics(g, reference, options.edge_paths->name, threads, result);
+    for (const auto e : g.coarse().edges()) result.polyline_points += g.polyline(e).size();
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
