@@ -152,6 +152,13 @@ public:
             if (g.location(v).kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(g.location(v).vertex);
             given_.push_back(g.location(v));
         }
+        for (EdgeHandle e : g.coarse().edges())
+            if (g.length(e) < min_edge_) {
+                const HalfedgeHandle h = g.coarse().halfedge_handle(e, 0);
+                short_given_edges_.push_back({{mesh.point(g.location(g.coarse().from_vertex_handle(h))),
+                                               mesh.point(g.location(g.coarse().to_vertex_handle(h)))},
+                                              g.length(e)});
+            }
     }
 
     void bisect() {
@@ -165,7 +172,7 @@ public:
             const bool too_long = options_.max_length > 0.0 && g_.length(longest) > options_.max_length;
             const bool too_few = options_.target_faces > 0 && static_cast<int>(coarse.n_faces()) < options_.target_faces;
             if (!too_long && !too_few) break;
-            if (!split_edge_somewhere(longest)) refused.insert(longest.idx());
+            if (!split_edge_somewhere(longest, min_edge_)) refused.insert(longest.idx());
             progress("bisection");
         }
     }
@@ -239,7 +246,23 @@ private:
             shortest = std::min(shortest, g_.length(g_.coarse().edge_handle(h)));
             if (!exempt(g_.coarse().from_vertex_handle(h))) smallest = std::min(smallest, corner_angle(g_, h));
         }
-        return shortest < min_edge_ ? std::numeric_limits<double>::infinity() : smallest;
+        return shortest < min_edge_of(f) ? std::numeric_limits<double>::infinity() : smallest;
+    }
+
+    /// The shortest edge that refinement refines in f and makes there: min_edge_, or less near an edge of the G given
+    /// that is shorter, the length of that edge plus f's distance to it (as a local feature size grows away from a
+    /// feature). Such an edge joins two input vertices that are close together (two corners of a small chamfer of a
+    /// CAD part): a feature of the input, whose triangles refinement must mend at its scale (skipping them left
+    /// corners of 11 degrees on cad/joint.off), with triangles that grow away from it.
+    double min_edge_of(FaceHandle f) const {
+        double min_length = min_edge_;
+        for (const ShortEdge& edge : short_given_edges_)
+            for (VertexHandle v : g_.coarse().fv_range(f)) {
+                const Eigen::Vector3d x = g_.fine().mesh.point(g_.location(v));
+                const double distance = std::min((x - edge.ends[0]).norm(), (x - edge.ends[1]).norm());
+                min_length = std::min(min_length, edge.length + distance);
+            }
+        return min_length;
     }
 
     SplitOptions split_options(bool region_fallback) {
@@ -261,13 +284,14 @@ private:
 
     /// Does `split` (one of split_edge() or split_face() on the G it is given) on a copy of G, then the flips around
     /// the new vertex, and keeps the result when the corners of the faces at the new vertex are no smaller than
-    /// `floor` (radians) and its edges no shorter than the shortest edge that refinement still refines. A split
+    /// `floor` (radians) and its edges no shorter than `min_length`, the shortest edge that refinement still
+    /// refines there (min_edge_of()). A split
     /// that makes a worse corner than the one it mends is what lets refinement chase its own tail; one that puts
     /// the new vertex next to another makes triangles too small to mend. Says whether G changed, or else whether
     /// the split itself was refused or made and then refused.
     enum class Tried { kept, refused_split, refused_shape };
     template <class Split>
-    Tried try_split(Split split, double floor, int& counter) {
+    Tried try_split(Split split, double floor, double min_length, int& counter) {
         GeodesicTriangulation trial = g_;
         const SplitResult done = split(trial);
         if (!done.done) {
@@ -281,7 +305,7 @@ private:
         double shortest_new = std::numeric_limits<double>::infinity();
         for (HalfedgeHandle h : trial.coarse().voh_range(done.vertex))
             shortest_new = std::min(shortest_new, trial.length(trial.coarse().edge_handle(h)));
-        if (shortest_new < min_edge_ || smallest_corner_around(trial, done.vertex) < floor ||
+        if (shortest_new < min_length || smallest_corner_around(trial, done.vertex) < floor ||
             (keep_above_ > 0.0 && smallest_changed_corner(trial) < keep_above_)) {
             ++result_.refused_splits;
             return Tried::refused_shape;
@@ -335,12 +359,13 @@ private:
         return 0.5 * smallest;
     }
 
-    /// Splits e at its midpoint (or, when that is refused, at 0.4 or 0.6 of it); false when every one is refused.
-    /// `unsplit`, when given, gets the fractions where the split itself was refused.
-    bool split_edge_somewhere(EdgeHandle e, bool region_fallback = true,
+    /// Splits e at its midpoint (or, when that is refused, at 0.4 or 0.6 of it), making no edge shorter than
+    /// `min_length`; false when every one is refused. `unsplit`, when given, gets the fractions where the split
+    /// itself was refused.
+    bool split_edge_somewhere(EdgeHandle e, double min_length, bool region_fallback = true,
                               std::vector<std::pair<EdgeHandle, double>>* unsplit = nullptr) {
         for (double fraction : {0.5, 0.4, 0.6}) {
-            const Tried tried = split_edge_at(e, fraction, region_fallback);
+            const Tried tried = split_edge_at(e, fraction, min_length, region_fallback);
             if (tried == Tried::kept) return true;
             if (tried == Tried::refused_split && unsplit) unsplit->emplace_back(e, fraction);
         }
@@ -348,11 +373,11 @@ private:
     }
 
     /// One try of split_edge_somewhere(): e split at `fraction`.
-    Tried split_edge_at(EdgeHandle e, double fraction, bool region_fallback) {
+    Tried split_edge_at(EdgeHandle e, double fraction, double min_length, bool region_fallback) {
         auto split = [&](GeodesicTriangulation& trial) {
             return split_edge(trial, e, fraction, split_options(region_fallback));
         };
-        return try_split(split, std::max(floor_at(e), keep_above_), result_.edge_splits);
+        return try_split(split, std::max(floor_at(e), keep_above_), min_length, result_.edge_splits);
     }
 
     /// The circumcentre of f, found on T by walking straight from a corner of f in the direction that the
@@ -478,26 +503,27 @@ private:
     bool refine_face(FaceHandle f) {
         const CoarseMesh& coarse = g_.coarse();
         const auto h = halfedges_of(coarse, f);
+        const double min_length = min_edge_of(f);
         if (const std::optional<Centre> centre = circumcentre(f)) {
             const std::vector<FaceHandle> around = with_neighbours(f);
             // A curved vertex of T inside the circumcircle goes in first: between curved vertices of T that are
             // not coarse vertices, circumcentres can chase each other down to ever smaller triangles.
             const double floor = std::max(0.5 * smallest_corner(f), keep_above_);
             if (const std::optional<int> cone = curved_vertex_near(centre->point, centre->radius)) {
-                if (insert_in_one_of(around, SurfacePoint::at_vertex(*cone), floor)) return true;
+                if (insert_in_one_of(around, SurfacePoint::at_vertex(*cone), floor, min_length)) return true;
             }
-            if (insert_in_one_of(centre_patches(f, *centre), centre->point, floor)) return true;
+            if (insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length)) return true;
         }
         std::array<EdgeHandle, 3> edges{coarse.edge_handle(h[0]), coarse.edge_handle(h[1]), coarse.edge_handle(h[2])};
         std::stable_sort(edges.begin(), edges.end(),
                          [&](EdgeHandle a, EdgeHandle b) { return g_.length(a) > g_.length(b); });
         std::vector<std::pair<EdgeHandle, double>> unsplit;
         for (EdgeHandle e : edges)
-            if (split_edge_somewhere(e, false, &unsplit)) return true;
+            if (split_edge_somewhere(e, min_length, false, &unsplit)) return true;
         // Again with geodesics inside the patches where the shortest ones left them. A split that was made and
         // then refused for its shape used no such fallback: it would be refused again, so it is not tried.
         for (const auto& [e, fraction] : unsplit)
-            if (split_edge_at(e, fraction, true) == Tried::kept) return true;
+            if (split_edge_at(e, fraction, min_length, true) == Tried::kept) return true;
         return false;
     }
 
@@ -566,13 +592,14 @@ private:
         return with_neighbours(f, with_neighbours(layout_walk(centre.corner, centre.layout_direction, centre.radius)));
     }
 
-    /// Splits the first of `faces` whose patch holds p strictly inside, with no new corner below `floor`; false
-    /// when none does.
-    bool insert_in_one_of(const std::vector<FaceHandle>& faces, const SurfacePoint& p, double floor) {
+    /// Splits the first of `faces` whose patch holds p strictly inside, with no new corner below `floor` and no new
+    /// edge shorter than `min_length`; false when none does.
+    bool insert_in_one_of(const std::vector<FaceHandle>& faces, const SurfacePoint& p, double floor,
+                          double min_length) {
         SplitOptions options = split_options(false);
         for (std::size_t i = 0; i < faces.size(); ++i) {
             auto split = [&](GeodesicTriangulation& trial) { return split_face(trial, faces[i], p, options); };
-            const Tried tried = try_split(split, floor, result_.face_splits);
+            const Tried tried = try_split(split, floor, min_length, result_.face_splits);
             if (tried == Tried::kept) {
                 if (p.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(p.vertex);
                 return true;
@@ -642,6 +669,11 @@ private:
     std::set<int> coarse_at_fine_vertex_;  ///< the vertices of T that coarse vertices sit on
     std::optional<Overlay> overlay_of_g_;  ///< build_overlay(g_), once a split needed it
     std::vector<SurfacePoint> given_;       ///< the locations of the vertices of the G given
+    struct ShortEdge {
+        std::array<Eigen::Vector3d, 2> ends;
+        double length;
+    };
+    std::vector<ShortEdge> short_given_edges_;  ///< the edges of the G given shorter than min_edge_
     std::set<std::vector<double>> failed_stars_;  ///< star_key() of the removals tried without success
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
