@@ -285,10 +285,9 @@ private:
     /// Does `split` (one of split_edge() or split_face() on the G it is given) on a copy of G, then the flips around
     /// the new vertex, and keeps the result when the corners of the faces at the new vertex are no smaller than
     /// `floor` (radians) and its edges no shorter than `min_length`, the shortest edge that refinement still
-    /// refines there (min_edge_of()). A split
-    /// that makes a worse corner than the one it mends is what lets refinement chase its own tail; one that puts
-    /// the new vertex next to another makes triangles too small to mend. Says whether G changed, or else whether
-    /// the split itself was refused or made and then refused.
+    /// refines there (min_edge_of()). A split that makes a worse corner than the one it mends is what lets
+    /// refinement chase its own tail; one that puts the new vertex next to another makes triangles too small to
+    /// mend. Says whether G changed, or else whether the split itself was refused or made and then refused.
     enum class Tried { kept, refused_split, refused_shape };
     template <class Split>
     Tried try_split(Split split, double floor, double min_length, int& counter) {
