@@ -1,8 +1,8 @@
 #pragma once
-// Condition 1's verdict on each polyline of a G, kept from one validation to the next. Copies of G share their
-// polylines, and an operation replaces a polyline rather than change it, so a trial copy's unchanged edges hold the
-// same polyline objects as the G it was copied from: their verdicts need not be computed again. Untangling judges
-// thousands of trial copies that differ from G in a few edges.
+// Condition 1's verdict on each polyline of a G, and what condition 3 needs of it, kept from one validation to the
+// next. Copies of G share their polylines, and an operation replaces a polyline rather than change it, so a trial
+// copy's unchanged edges hold the same polyline objects as the G it was copied from: their verdicts need not be
+// computed again. Untangling judges thousands of trial copies that differ from G in a few edges.
 
 #include <geotri/geodesic_triangulation.h>
 #include <geotri/validate.h>
@@ -13,6 +13,8 @@
 #include <unordered_map>
 
 namespace geotri::detail {
+
+struct CrossingItems;  // validate.cpp
 
 class PolylineVerdicts {
 public:
@@ -28,12 +30,16 @@ public:
     /// The polyline of g's edge e with its points in canonical form, when its verdict is known here (as find());
     /// else null. Validation needs the canonical points of every polyline for condition 3.
     const Polyline* canonical(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
+    /// The points and segments of g's edge e, each with the fine element that holds it, as condition 3 sorts them,
+    /// when its verdict is known here (as find()); else null.
+    const CrossingItems* crossing_items(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
 
 private:
     struct Verdict {
         double recorded_length;
         std::string defect;
         std::shared_ptr<const Polyline> canonical;
+        std::shared_ptr<const CrossingItems> crossings;
     };
     const Verdict* verdict(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
     std::optional<GeodesicTriangulation> kept_;

@@ -22,6 +22,52 @@ namespace geotri {
 using geodesic::Mesh;
 using geodesic::PointKind;
 
+namespace detail {
+
+/// A point that takes part in condition 3: point `index` of the polyline of coarse edge `feature` (feature < number
+/// of edges), or the location of coarse vertex `feature - number of edges` (index 0).
+struct Item {
+    int feature;
+    int index;
+};
+
+struct EdgePoint {
+    int key;
+    double t;
+    Item item;
+};
+
+struct EdgeInterval {
+    int key;
+    double t0, t1;
+    int feature;
+    int segment;
+};
+
+struct FaceSegment {
+    int face;
+    Item end[2];
+    Eigen::Vector2d x[2];
+    int segment;  ///< -1 for a coarse vertex (a single point)
+};
+
+/// A polyline's part in condition 3: its points and segments, each with the fine vertex, edge or face that holds
+/// it, as Validator::check_crossings() sorts them. Their coarse edge (feature) is 0, set where they are used: an
+/// unchanged polyline may belong to an edge of another index in a changed copy of G.
+struct CrossingItems {
+    std::vector<std::pair<int, Item>> vertex_items;  ///< a fine vertex, and a point on it
+    std::vector<EdgePoint> edge_points;
+    std::vector<EdgeInterval> edge_intervals;
+    std::vector<FaceSegment> face_segments;
+};
+
+}  // namespace detail
+
+using detail::CrossingItems;
+using detail::EdgeInterval;
+using detail::EdgePoint;
+using detail::FaceSegment;
+using detail::Item;
 using detail::point_segment_distance;
 using detail::segment_distance;
 
@@ -57,6 +103,41 @@ int edge_key(const Mesh& mesh, int a, int b) {
     return edge_key(mesh, h >= 0 ? h : mesh.find_halfedge(b, a));
 }
 
+/// Files p, a point of `item`, under the fine vertex or edge that holds it (nothing for a point inside a face).
+void add_point(const Mesh& mesh, const SurfacePoint& p, const Item& item, CrossingItems& out) {
+    if (p.kind == PointKind::vertex) {
+        out.vertex_items.emplace_back(p.vertex, item);
+    } else if (p.kind == PointKind::edge) {
+        out.edge_points.push_back({edge_key(mesh, p.edge_v0, p.edge_v1), p.t, item});
+    }
+}
+
+/// The condition-3 items of a polyline in canonical form whose points are apart and pairwise on a common face.
+CrossingItems polyline_crossing_items(const Mesh& mesh, const Polyline& path) {
+    CrossingItems out;
+    const int n = static_cast<int>(path.size());
+    for (int i = 0; i < n; ++i) add_point(mesh, path[i], {0, i}, out);
+    for (int i = 0; i + 1 < n; ++i) {
+        const SurfacePoint& p = path[i];
+        const SurfacePoint& q = path[i + 1];
+        if (on_common_edge(mesh, p, q)) {
+            const auto [a, b] = common_edge(p, q);
+            auto param = [a = a](const SurfacePoint& s) {
+                return s.kind == PointKind::vertex ? (s.vertex == a ? 0.0 : 1.0) : s.t;
+            };
+            const double tp = param(p), tq = param(q);
+            out.edge_intervals.push_back({edge_key(mesh, a, b), std::min(tp, tq), std::max(tp, tq), 0, i});
+        } else {
+            const int f = common_face(mesh, p, q);
+            out.face_segments.push_back({f,
+                                         {Item{0, i}, Item{0, i + 1}},
+                                         {halfedge_coordinates(mesh, 3 * f, p), halfedge_coordinates(mesh, 3 * f, q)},
+                                         i});
+        }
+    }
+    return out;
+}
+
 /// Empty when the consecutive points of `path` are apart and share a fine face, else the first pair that does not.
 std::string points_defect(const Mesh& mesh, const Polyline& path) {
     for (std::size_t i = 0; i + 1 < path.size(); ++i) {
@@ -66,33 +147,6 @@ std::string points_defect(const Mesh& mesh, const Polyline& path) {
     }
     return {};
 }
-
-/// A point that takes part in condition 3: point `index` of the polyline of coarse edge `feature` (feature < number
-/// of edges), or the location of coarse vertex `feature - number of edges` (index 0).
-struct Item {
-    int feature;
-    int index;
-};
-
-struct EdgePoint {
-    int key;
-    double t;
-    Item item;
-};
-
-struct EdgeInterval {
-    int key;
-    double t0, t1;
-    int feature;
-    int segment;
-};
-
-struct FaceSegment {
-    int face;
-    Item end[2];
-    Eigen::Vector2d x[2];
-    int segment;  ///< -1 for a coarse vertex (a single point)
-};
 
 class Validator {
 public:
@@ -135,7 +189,6 @@ private:
     }
     bool allowed(const Item& a, const Item& b) const;
     void meet(const Item& a, const Item& b, const std::string& where);
-    void add_point(const Item& item);
 
     const GeodesicTriangulation& g_;
     const Mesh& mesh_;
@@ -149,10 +202,7 @@ private:
     std::vector<unsigned char> path_ok_;         ///< per coarse edge: ends match and every segment shares a face
     std::vector<double> corner_angles_;          ///< every coarse corner angle that could be measured
 
-    std::vector<std::pair<int, Item>> vertex_items_;
-    std::vector<EdgePoint> edge_points_;
-    std::vector<EdgeInterval> edge_intervals_;
-    std::vector<FaceSegment> face_segments_;
+    CrossingItems items_;  ///< condition 3: every point and segment of G, with the fine element that holds it
     std::map<std::pair<int, int>, std::string> meetings_;
 };
 
@@ -334,44 +384,29 @@ void Validator::meet(const Item& a, const Item& b, const std::string& where) {
     meetings_.emplace(std::make_pair(key.first, key.second), where);
 }
 
-void Validator::add_point(const Item& item) {
-    const SurfacePoint& p = point_of(item);
-    if (p.kind == PointKind::vertex) {
-        vertex_items_.emplace_back(p.vertex, item);
-        // Also on every fine edge at the vertex, so that a crossing a hair away from it is seen.
-        for (int h : mesh_.outgoing_halfedges(p.vertex)) {
-            const int w = mesh_.head(h);
-            edge_points_.push_back({edge_key(mesh_, h), p.vertex < w ? 0.0 : 1.0, item});
-        }
-    } else if (p.kind == PointKind::edge) {
-        edge_points_.push_back({edge_key(mesh_, p.edge_v0, p.edge_v1), p.t, item});
-    }
-}
-
 void Validator::check_crossings() {
     const int ne = num_edges();
     // Bucket every point and segment by the fine vertex, edge or face that holds it.
     for (int e = 0; e < ne; ++e) {
         if (!path_ok_[e]) continue;
-        const Polyline& path = paths_[e];
-        for (int i = 0; i < static_cast<int>(path.size()); ++i) add_point({e, i});
-        for (int i = 0; i + 1 < static_cast<int>(path.size()); ++i) {
-            const SurfacePoint& p = path[i];
-            const SurfacePoint& q = path[i + 1];
-            if (on_common_edge(mesh_, p, q)) {
-                const auto [a, b] = common_edge(p, q);
-                auto param = [a](const SurfacePoint& s) {
-                    return s.kind == PointKind::vertex ? (s.vertex == a ? 0.0 : 1.0) : s.t;
-                };
-                const double tp = param(p), tq = param(q);
-                edge_intervals_.push_back({edge_key(mesh_, a, b), std::min(tp, tq), std::max(tp, tq), e, i});
-            } else {
-                const int f = common_face(mesh_, p, q);
-                face_segments_.push_back({f,
-                                          {Item{e, i}, Item{e, i + 1}},
-                                          {halfedge_coordinates(mesh_, 3 * f, p), halfedge_coordinates(mesh_, 3 * f, q)},
-                                          i});
-            }
+        const CrossingItems* items = known_ ? known_->crossing_items(g_, OpenMesh::EdgeHandle(e)) : nullptr;
+        CrossingItems own;
+        if (!items) {
+            own = polyline_crossing_items(mesh_, paths_[e]);
+            items = &own;
+        }
+        for (auto [vertex, item] : items->vertex_items) items_.vertex_items.emplace_back(vertex, Item{e, item.index});
+        for (EdgePoint p : items->edge_points) {
+            p.item.feature = e;
+            items_.edge_points.push_back(p);
+        }
+        for (EdgeInterval s : items->edge_intervals) {
+            s.feature = e;
+            items_.edge_intervals.push_back(s);
+        }
+        for (FaceSegment s : items->face_segments) {
+            s.end[0].feature = s.end[1].feature = e;
+            items_.face_segments.push_back(s);
         }
     }
     for (auto c : coarse_.vertices()) {
@@ -379,75 +414,94 @@ void Validator::check_crossings() {
         const SurfacePoint& p = locations_[c.idx()];
         if (p.kind == PointKind::face) {
             const Eigen::Vector2d x = halfedge_coordinates(mesh_, 3 * p.face, p);
-            face_segments_.push_back({p.face, {item, item}, {x, x}, -1});
+            items_.face_segments.push_back({p.face, {item, item}, {x, x}, -1});
         } else {
-            add_point(item);
+            add_point(mesh_, p, item, items_);
         }
     }
 
     // Points on one fine vertex.
-    std::sort(vertex_items_.begin(), vertex_items_.end(), [](const auto& x, const auto& y) {
+    std::sort(items_.vertex_items.begin(), items_.vertex_items.end(), [](const auto& x, const auto& y) {
         return x.first < y.first || (x.first == y.first && x.second.feature < y.second.feature);
     });
-    for (std::size_t i = 0; i < vertex_items_.size();) {
+    for (std::size_t i = 0; i < items_.vertex_items.size();) {
         std::size_t j = i;
-        while (j < vertex_items_.size() && vertex_items_[j].first == vertex_items_[i].first) ++j;
+        while (j < items_.vertex_items.size() && items_.vertex_items[j].first == items_.vertex_items[i].first) ++j;
         for (std::size_t a = i; a < j; ++a)
             for (std::size_t b = a + 1; b < j; ++b)
-                if (!allowed(vertex_items_[a].second, vertex_items_[b].second))
-                    meet(vertex_items_[a].second, vertex_items_[b].second,
-                         "at fine vertex " + std::to_string(vertex_items_[i].first));
+                if (!allowed(items_.vertex_items[a].second, items_.vertex_items[b].second))
+                    meet(items_.vertex_items[a].second, items_.vertex_items[b].second,
+                         "at fine vertex " + std::to_string(items_.vertex_items[i].first));
         i = j;
     }
 
     // Points and segments on one fine edge: coincident points, points inside a segment along the edge, and
     // segments that overlap along it.
-    std::sort(edge_points_.begin(), edge_points_.end(),
+    std::sort(items_.edge_points.begin(), items_.edge_points.end(),
               [](const EdgePoint& x, const EdgePoint& y) { return x.key < y.key || (x.key == y.key && x.t < y.t); });
-    std::sort(edge_intervals_.begin(), edge_intervals_.end(),
+    std::sort(items_.edge_intervals.begin(), items_.edge_intervals.end(),
               [](const EdgeInterval& x, const EdgeInterval& y) { return x.key < y.key || (x.key == y.key && x.t0 < y.t0); });
     auto edge_where = [&](int key) {
         return "on fine edge (" + std::to_string(mesh_.tail(key)) + "," + std::to_string(mesh_.head(key)) + ")";
     };
-    for (std::size_t i = 0; i < edge_points_.size(); ++i) {
-        for (std::size_t j = i + 1; j < edge_points_.size() && edge_points_[j].key == edge_points_[i].key &&
-                                    edge_points_[j].t - edge_points_[i].t <= k_meet_tolerance;
+    // The points at a fine vertex (vertex_items is sorted), for the points on its edges a hair away from it.
+    using VertexItem = std::pair<int, Item>;
+    auto at_vertex = [&](int vertex) {
+        const auto& items = items_.vertex_items;
+        const auto first = std::lower_bound(items.begin(), items.end(), vertex,
+                                            [](const VertexItem& x, int value) { return x.first < value; });
+        const auto last = std::upper_bound(first, items.end(), vertex,
+                                           [](int value, const VertexItem& x) { return value < x.first; });
+        return std::make_pair(first, last);
+    };
+    const std::vector<EdgePoint>& points = items_.edge_points;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const EdgePoint& p = points[i];
+        for (std::size_t j = i + 1; j < points.size() && points[j].key == p.key && points[j].t - p.t <= k_meet_tolerance;
              ++j) {
-            if (!allowed(edge_points_[i].item, edge_points_[j].item))
-                meet(edge_points_[i].item, edge_points_[j].item, edge_where(edge_points_[i].key));
+            if (!allowed(p.item, points[j].item)) meet(p.item, points[j].item, edge_where(p.key));
+        }
+        // The points at the edge's ends, where p is a hair away from one (t is 0 at the end of smaller index).
+        const int tail = mesh_.tail(p.key), head = mesh_.head(p.key);
+        const int a = std::min(tail, head), b = std::max(tail, head);
+        for (const auto& [end, near] : {std::pair{a, p.t <= k_meet_tolerance}, std::pair{b, 1.0 - p.t <= k_meet_tolerance}}) {
+            if (!near) continue;
+            const auto [first, last] = at_vertex(end);
+            for (auto v = first; v != last; ++v)
+                if (!allowed(v->second, p.item)) meet(v->second, p.item, edge_where(p.key));
         }
     }
-    for (std::size_t i = 0; i < edge_intervals_.size(); ++i) {
-        const EdgeInterval& s = edge_intervals_[i];
+    for (std::size_t i = 0; i < items_.edge_intervals.size(); ++i) {
+        const EdgeInterval& s = items_.edge_intervals[i];
         const Item item{s.feature, s.segment};
-        auto first = std::lower_bound(edge_points_.begin(), edge_points_.end(), s,
+        auto first = std::lower_bound(items_.edge_points.begin(), items_.edge_points.end(), s,
                                       [](const EdgePoint& p, const EdgeInterval& x) {
                                           return p.key < x.key || (p.key == x.key && p.t <= x.t0 + k_meet_tolerance);
                                       });
-        for (auto p = first; p != edge_points_.end() && p->key == s.key && p->t < s.t1 - k_meet_tolerance; ++p)
+        for (auto p = first; p != items_.edge_points.end() && p->key == s.key && p->t < s.t1 - k_meet_tolerance; ++p)
             meet(item, p->item, edge_where(s.key));
-        for (std::size_t j = i + 1; j < edge_intervals_.size() && edge_intervals_[j].key == s.key; ++j) {
-            const EdgeInterval& r = edge_intervals_[j];
+        for (std::size_t j = i + 1; j < items_.edge_intervals.size() && items_.edge_intervals[j].key == s.key; ++j) {
+            const EdgeInterval& r = items_.edge_intervals[j];
             if (std::min(s.t1, r.t1) - std::max(s.t0, r.t0) > k_meet_tolerance)
                 meet(item, {r.feature, r.segment}, edge_where(s.key));
         }
     }
 
     // Segments inside one fine face.
-    std::sort(face_segments_.begin(), face_segments_.end(),
+    std::sort(items_.face_segments.begin(), items_.face_segments.end(),
               [](const FaceSegment& x, const FaceSegment& y) { return x.face < y.face; });
-    for (std::size_t i = 0; i < face_segments_.size();) {
+    for (std::size_t i = 0; i < items_.face_segments.size();) {
         std::size_t j = i;
-        while (j < face_segments_.size() && face_segments_[j].face == face_segments_[i].face) ++j;
+        while (j < items_.face_segments.size() && items_.face_segments[j].face == items_.face_segments[i].face) ++j;
         if (j - i > 1) {
-            const int f = face_segments_[i].face;
+            const int f = items_.face_segments[i].face;
             const double tolerance =
                 k_meet_tolerance * std::max({mesh_.length(3 * f), mesh_.length(3 * f + 1), mesh_.length(3 * f + 2)});
             const std::string where = "in fine face " + std::to_string(f);
             for (std::size_t a = i; a < j; ++a) {
                 for (std::size_t b = a + 1; b < j; ++b) {
-                    const FaceSegment& s = face_segments_[a];
-                    const FaceSegment& r = face_segments_[b];
+                    const FaceSegment& s = items_.face_segments[a];
+                    const FaceSegment& r = items_.face_segments[b];
                     if (s.end[0].feature == r.end[0].feature && s.segment >= 0 && std::abs(s.segment - r.segment) <= 1)
                         continue;  // one polyline's consecutive segments
                     int shared_s = -1, shared_r = -1;
@@ -635,8 +689,11 @@ PolylineVerdicts::PolylineVerdicts(const GeodesicTriangulation& g, const Polylin
         auto path = std::make_shared<Polyline>();
         path->reserve(raw.size());
         for (const SurfacePoint& p : raw) path->push_back(mesh.canonical(p));
-        if (points_defect(mesh, *path).empty())
-            verdicts_[&raw] = {g.length(e), shape_defect(mesh, *path, g.length(e)), std::move(path)};
+        if (points_defect(mesh, *path).empty()) {
+            auto crossings = std::make_shared<const CrossingItems>(polyline_crossing_items(mesh, *path));
+            verdicts_[&raw] = {g.length(e), shape_defect(mesh, *path, g.length(e)), std::move(path),
+                               std::move(crossings)};
+        }
     }
 }
 
@@ -655,6 +712,11 @@ const std::string* PolylineVerdicts::find(const GeodesicTriangulation& g, OpenMe
 const Polyline* PolylineVerdicts::canonical(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const {
     const Verdict* known = verdict(g, e);
     return known ? known->canonical.get() : nullptr;
+}
+
+const CrossingItems* PolylineVerdicts::crossing_items(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const {
+    const Verdict* known = verdict(g, e);
+    return known ? known->crossings.get() : nullptr;
 }
 
 ValidationReport validate(const GeodesicTriangulation& g, const ValidationOptions& options,
