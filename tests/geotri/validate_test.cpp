@@ -491,10 +491,19 @@ TEST(Validate, geodesic_through_another_coarse_vertex_is_found) {
     ASSERT_GE(diagonal, 0);
     const Polyline path = base.path(coarse.find_halfedge(OpenMesh::VertexHandle(4), OpenMesh::VertexHandle(7)));
 
-    // Points on the diagonal: an interior polyline point, and the middle of each segment.
+    // Points on the diagonal: an interior polyline point, and the middle of each segment; and a hair (1e-15 of a
+    // fine edge) away from each interior point at a fine vertex, on a fine edge at it.
     std::vector<SurfacePoint> places;
-    for (std::size_t i = 1; i + 1 < path.size(); ++i) places.push_back(path[i]);
     const Mesh& mesh = fine->mesh;
+    int hair_away = 0;
+    for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+        places.push_back(path[i]);
+        if (path[i].kind != geodesic::PointKind::vertex) continue;
+        const int v = path[i].vertex, w = mesh.head(*mesh.outgoing_halfedges(v).begin());
+        places.push_back(SurfacePoint::on_edge(v, w, 1e-15));
+        ++hair_away;
+    }
+    ASSERT_GT(hair_away, 0) << "the diagonal should pass through a fine vertex";
     for (std::size_t i = 0; i + 1 < path.size(); ++i) {
         const Eigen::Vector3d mid = 0.5 * (mesh.point(path[i]) + mesh.point(path[i + 1]));
         if (on_common_edge(mesh, path[i], path[i + 1])) {
