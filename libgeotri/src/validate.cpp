@@ -457,14 +457,15 @@ void Validator::check_crossings() {
     const std::vector<EdgePoint>& points = items_.edge_points;
     for (std::size_t i = 0; i < points.size(); ++i) {
         const EdgePoint& p = points[i];
-        for (std::size_t j = i + 1; j < points.size() && points[j].key == p.key && points[j].t - p.t <= k_meet_tolerance;
-             ++j) {
+        for (std::size_t j = i + 1;
+             j < points.size() && points[j].key == p.key && points[j].t - p.t <= k_meet_tolerance; ++j) {
             if (!allowed(p.item, points[j].item)) meet(p.item, points[j].item, edge_where(p.key));
         }
         // The points at the edge's ends, where p is a hair away from one (t is 0 at the end of smaller index).
         const int tail = mesh_.tail(p.key), head = mesh_.head(p.key);
         const int a = std::min(tail, head), b = std::max(tail, head);
-        for (const auto& [end, near] : {std::pair{a, p.t <= k_meet_tolerance}, std::pair{b, 1.0 - p.t <= k_meet_tolerance}}) {
+        const std::pair<int, bool> ends[] = {{a, p.t <= k_meet_tolerance}, {b, 1.0 - p.t <= k_meet_tolerance}};
+        for (const auto& [end, near] : ends) {
             if (!near) continue;
             const auto [first, last] = at_vertex(end);
             for (auto v = first; v != last; ++v)
