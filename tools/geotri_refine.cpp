@@ -52,6 +52,11 @@ int run(tools::Tool& tool) {
                    "Then refine until every corner angle is at least this many degrees, at most 35 (default: none);\n"
                    "corners at points of T whose cone angle is below three times it are exempt")
         ->check(CLI::Range(0.0, 35.0));
+    app.add_option("--max-new-vertices", options.max_new_vertices,
+                   "At most this many new vertices in each phase (default: none for bisection; for --min-angle,\n"
+                   "four times the faces of G plus 100). On scanned surfaces whose every fine vertex is curved,\n"
+                   "refinement stops there while the corners below the angle still fall: more leaves fewer")
+        ->check(CLI::PositiveNumber);
     app.add_flag("--no-flip", no_flip, "Do not flip towards geodesic Delaunay around new vertices");
     bool keep_vertices = false;
     app.add_flag("--keep-vertices", keep_vertices,
@@ -118,7 +123,8 @@ int run(tools::Tool& tool) {
                      "%s: %zu -> %zu faces: %d edge splits, %d circumcentres, %d vertices taken out, %d flips, %d "
                      "splits refused%s\n",
                      program, faces_before, g.coarse().n_faces(), r.edge_splits, r.face_splits, r.removed_vertices,
-                     r.flips, r.refused_splits, r.vertex_cap_reached ? "; stopped at the vertex cap" : "");
+                     r.flips, r.refused_splits,
+                     r.vertex_cap_reached ? "; stopped at the vertex cap (--max-new-vertices)" : "");
         std::fprintf(stderr, "%s: corner angles: min %.4g -> %.4g, mean %.4g -> %.4g degrees; longest edge %.6g\n",
                      program, r.angles_before.min_deg, r.angles_after.min_deg, r.angles_before.mean_deg,
                      r.angles_after.mean_deg, r.longest_edge);

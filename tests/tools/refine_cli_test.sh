@@ -31,8 +31,8 @@ case "$case_name" in
 help_lists_every_option)
     run --help
     expect_rc 0
-    for option in IN --output --max-length --faces --min-angle --no-flip --fine --json --quiet --threads --version \
-                  --help; do
+    for option in IN --output --max-length --faces --min-angle --max-new-vertices --no-flip --fine --json --quiet \
+                  --threads --version --help; do
         grep -q -- "$option" stdout || fail "--help does not mention $option"
     done
     ;;
@@ -85,6 +85,19 @@ min_angle_is_reached)
     [ "$(json_value small_corners_left)" = "0" ] || fail "corners below 30 degrees are left"
     python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) >= 30 else 1)' "$(json_value min_corner_angle_deg)" ||
         fail "min corner angle $(json_value min_corner_angle_deg) is below 30"
+    ;;
+
+vertex_cap_is_the_option)
+    make_valid_gtri "$bob" --faces 100
+    run in_g.gtri -o out.gtri --min-angle 30 --max-new-vertices 3 --json
+    expect_rc 0
+    check out.gtri || fail "geotri-check finds out.gtri invalid"
+    [ "$(json_value vertex_cap_reached)" = "true" ] || fail "the cap of 3 new vertices was not reached"
+    faces=$(json_value faces)
+    [ "$faces" -le 106 ] || fail "$faces faces from 100 with at most 3 new vertices"
+    grep -q -- "--max-new-vertices" stderr || fail "the summary does not say which option raises the cap"
+    run in_g.gtri -o out.gtri --min-angle 30 --max-new-vertices 0
+    expect_usage_error
     ;;
 
 same_output_twice)
