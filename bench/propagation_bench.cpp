@@ -255,6 +255,9 @@ bool run_one(const std::string& spec, const Options& options) {
     const double ours = times[times.size() / 2];
     const std::vector<double> distances = propagation.vertex_distances();
     const auto stats = propagation.stats();
+    std::cerr << label << ": windows created " << stats.windows_created << ", propagated " << stats.windows_propagated
+              << ", pruned " << stats.windows_pruned << ", merged " << stats.windows_merged << ", vertex emissions "
+              << stats.vertex_emissions << ", peak queue " << stats.peak_queue_size << "\n";
     if (!options.dump.empty()) {
         std::FILE* file = std::fopen(options.dump.c_str(), "w");
         if (file == nullptr) throw geotri::IOError("cannot write " + options.dump);

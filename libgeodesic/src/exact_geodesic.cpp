@@ -134,11 +134,14 @@ private:
     std::vector<Predecessor> predecessor_;
     std::vector<int> touched_vertices_;
     std::vector<int> first_window_;  // per halfedge
+    std::vector<int> first_pending_;  // per halfedge: its windows that have not crossed its face yet
+    std::vector<double> queued_halfedge_key_;  // per halfedge: the key of its latest queue entry
     std::vector<int> touched_halfedges_;
     std::vector<Window> windows_;
     std::vector<int> merged_pieces_;           // for merged windows: a count, then the ids of the pieces
     std::vector<int> merge_scratch_;
-    detail::EventQueue queue_;  // item >= 0 is a window, -1 - v a vertex emission
+    // Items: a halfedge (>= 0) whose pending windows cross its face together, or -1 - v, a vertex that emits.
+    detail::EventQueue queue_;
     std::vector<SurfacePoint> sources_;
     std::vector<StopPoint> stops_;
     std::vector<std::pair<int, int>> watches_;  // (halfedge, stop index), sorted
@@ -162,6 +165,8 @@ ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
     queued_key_.assign(nv, k_infinity);
     predecessor_.assign(nv, Predecessor{});
     first_window_.assign(mesh.num_halfedges(), -1);
+    first_pending_.assign(mesh.num_halfedges(), -1);
+    queued_halfedge_key_.assign(mesh.num_halfedges(), k_infinity);
     watched_.assign(mesh.num_halfedges(), 0);
 }
 
@@ -170,7 +175,11 @@ void ExactGeodesic::Impl::reset() {
         distance_[v] = k_infinity;
         predecessor_[v] = Predecessor{};
     }
-    for (int h : touched_halfedges_) first_window_[h] = -1;
+    for (int h : touched_halfedges_) {
+        first_window_[h] = -1;
+        first_pending_[h] = -1;
+        queued_halfedge_key_[h] = k_infinity;
+    }
     for (const auto& watch : watches_) watched_[watch.first] = 0;
     touched_vertices_.clear();
     touched_halfedges_.clear();
@@ -338,7 +347,7 @@ bool ExactGeodesic::Impl::trim_by_other_windows(Window& w, int self) const {
         if (list < 0) continue;
         int looked = 0;
         for (int id = first_window_[list]; id >= 0 && looked < k_compare_lookahead; id = windows_[id].next_on_edge) {
-            if (id == self) continue;
+            if (id <= self) break;  // compared when self was added
             ++looked;
             const Window& other = windows_[id];
             const EdgeProfile theirs{side == 0 ? other.sx : length - other.sx, other.sy, other.sigma};
@@ -380,7 +389,13 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
             stop.window_estimate = std::min(stop.window_estimate, window_value_at(w, layout(h, stop.point)));
         }
     }
-    push_queue(w.lower_bound() + estimate_left(w), id);
+    windows_[id].next_pending = first_pending_[h];
+    first_pending_[h] = id;
+    const double key = w.lower_bound() + estimate_left(w);
+    if (key < queued_halfedge_key_[h]) {
+        queued_halfedge_key_[h] = key;
+        push_queue(key, h);
+    }
 }
 
 int ExactGeodesic::Impl::merge_with_siblings(int id) {
@@ -783,9 +798,10 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     while (!queue_.empty()) {
         const auto [key, item] = queue_.pop();
         ++stats_.queue_pops;
-        // The next window to pop has waited in the queue since it was made, so its data is out of cache: fetch
-        // it while this one is processed.
-        if (!queue_.empty() && queue_.top_item() >= 0) prefetch(&windows_[queue_.top_item()]);
+        // The windows of the next halfedge to pop have waited since they were made, so they are out of cache:
+        // fetch the first while this item is processed.
+        if (!queue_.empty() && queue_.top_item() >= 0 && first_pending_[queue_.top_item()] >= 0)
+            prefetch(&windows_[first_pending_[queue_.top_item()]]);
         if (goals_.empty() && key > max_distance_) {  // a goal-directed key bounds more than the distance
             stats_.stopped_early = true;
             break;
@@ -796,7 +812,20 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             break;
         }
         if (item >= 0) {
-            propagate_window(item);
+            // All the pending windows of the halfedge cross its face now, not only the nearest (the batching of
+            // VTP, Qin et al. 2016). The queue's least key is still a lower bound of every pending window, so the
+            // stop tests above stay exact; and the windows of one face and of the edges around it are processed
+            // while they are in cache, with one queue entry for several windows.
+            const int h = item;
+            if (key != queued_halfedge_key_[h]) continue;  // its windows crossed with an earlier entry
+            queued_halfedge_key_[h] = k_infinity;
+            int id = first_pending_[h];
+            first_pending_[h] = -1;
+            while (id >= 0) {
+                const int next = windows_[id].next_pending;
+                propagate_window(id);
+                id = next;
+            }
         } else {
             const int v = -1 - item;
             if (key != queued_key_[v]) continue;  // superseded by a shorter distance

@@ -29,15 +29,15 @@ struct PropagationOptions {
 
 /// Counters of the last propagation, for benchmarks and tuning.
 struct PropagationStats {
-    std::size_t windows_created = 0;     ///< windows that entered the queue
+    std::size_t windows_created = 0;     ///< windows kept (each crosses its face once, unless pruned first)
     std::size_t windows_propagated = 0;  ///< windows carried across a face
     std::size_t windows_pruned = 0;      ///< windows dropped as dominated by a vertex
     std::size_t windows_merged = 0;      ///< fragments of one ray family merged before crossing a face
     std::size_t vertex_emissions = 0;    ///< saddle, boundary or source vertices that emitted windows
-    std::size_t queue_pushes = 0;
+    std::size_t queue_pushes = 0;        ///< queue entries: halfedges whose windows cross a face, and vertices
     std::size_t queue_pops = 0;
     std::size_t peak_queue_size = 0;
-    std::size_t window_bytes = 0;         ///< memory held by windows at the end of the propagation
+    std::size_t window_bytes = 0;        ///< memory held by windows at the end of the propagation
     bool stopped_early = false;          ///< ended by stop points or max_distance before the queue emptied
 };
 
