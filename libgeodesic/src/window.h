@@ -87,6 +87,12 @@ inline int profile_crossings(const EdgeProfile& a, const EdgeProfile& b, double 
             const double q = -0.5 * (qb + std::copysign(std::sqrt(discriminant), qb));
             if (q != 0.0) candidates[found++] = qc / q;
             candidates[found++] = q / qa;
+        } else {
+            // Where the quadratic comes nearest to zero. Equal sigmas (every window of one pseudo-source) make it
+            // a perfect square, whose double root, where the profiles cross, rounding leaves on either side of a
+            // zero discriminant: without this candidate such a crossing went unseen, and a window lost the part
+            // where it is the shorter one (1.5e-10 relative on a vertex of cad/turbineblade.ply).
+            candidates[found++] = -qb / (2.0 * qa);
         }
     }
     int count = 0;
