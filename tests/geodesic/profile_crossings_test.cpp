@@ -43,8 +43,8 @@ TEST(ProfileCrossings, finds_where_two_unfoldings_of_one_saddle_cross) {
 }
 
 TEST(ProfileCrossings, finds_the_crossing_of_equal_sigma_profiles_whatever_the_rounding) {
-    // Sources ever closer to each other, on both sides of the edge line, around one point of a unit edge: each pair
-    // crosses inside the edge, and the crossing must be among the candidates.
+    // Pairs of sources ever closer to each other, one moved from the other in every direction, below a unit edge:
+    // where a pair crosses inside the edge, the crossing must be among the candidates.
     int checked = 0;
     for (double offset : {1e-2, 1e-4, 1e-6, 1e-8}) {
         for (int k = 0; k < 50; ++k) {
