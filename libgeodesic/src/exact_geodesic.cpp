@@ -45,7 +45,7 @@ constexpr unsigned char k_merged = 2;
 // Windows of the same ray family (same pseudo-source, unfolded to the same place up to this relative rounding) that
 // touch on an edge are propagated as one.
 constexpr double k_same_source = 1e-13;
-constexpr int k_merge_lookahead = 8;
+constexpr int k_merge_lookahead = 4;
 
 // Windows compared with each other on an edge: the most recent ones, which are those the wavefront brings together.
 constexpr int k_compare_lookahead = 4;
