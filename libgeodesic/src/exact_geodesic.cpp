@@ -375,6 +375,8 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     const int id = static_cast<int>(windows_.size());
     if (w.next_on_edge < 0) touched_halfedges_.push_back(h);
     first_window_[h] = id;
+    w.next_pending = first_pending_[h];
+    first_pending_[h] = id;
     w.state = k_pending;
     windows_.push_back(w);
     ++stats_.windows_created;
@@ -389,8 +391,6 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
             stop.window_estimate = std::min(stop.window_estimate, window_value_at(w, layout(h, stop.point)));
         }
     }
-    windows_[id].next_pending = first_pending_[h];
-    first_pending_[h] = id;
     const double key = w.lower_bound() + estimate_left(w);
     if (key < queued_halfedge_key_[h]) {
         queued_halfedge_key_[h] = key;
