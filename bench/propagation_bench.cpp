@@ -51,6 +51,8 @@ options:
   --no-cgal            never run CGAL
   --no-header          print no table header
   --label TEXT         name of the mesh in the table (default: the argument, without folders for files)
+  --keep-windows       keep every window, as the library does by default so that paths are traced at once;
+                       without it they are freed as the wavefront passes (PropagationOptions::keep_windows)
   --dump FILE          write the vertex distances (%.17g, one a line) to FILE, for comparing builds; one mesh only
   --pairs N            instead: N point-to-point queries between vertices drawn with a fixed seed, each a
                        propagation with the target as its stop point, plain and goal-directed (A*); the mean CPU
@@ -64,6 +66,7 @@ struct Options {
     long cgal_max_faces = 250000;
     bool cgal = true;
     bool header = true;
+    bool keep_windows = false;
     std::string label;
     std::string dump;
     long pairs = 0;
@@ -111,6 +114,8 @@ Options parse(int argc, char** argv) {
             options.header = false;
         } else if (arg == "--label") {
             options.label = value();
+        } else if (arg == "--keep-windows") {
+            options.keep_windows = true;
         } else if (arg == "--dump") {
             options.dump = value();
         } else if (arg == "--pairs") {
@@ -245,10 +250,12 @@ bool run_one(const std::string& spec, const Options& options) {
     if (source >= mesh.num_vertices()) throw geotri::InvalidInput("--source is not a vertex of " + label);
 
     ExactGeodesic propagation(mesh);
+    geotri::geodesic::PropagationOptions everywhere;
+    everywhere.keep_windows = options.keep_windows;
     std::vector<double> times;
     for (int k = 0; k < options.repeat; ++k) {
         start = cpu_seconds();
-        propagation.propagate({SurfacePoint::at_vertex(source)});
+        propagation.propagate({SurfacePoint::at_vertex(source)}, everywhere);
         times.push_back(cpu_seconds() - start);
     }
     std::sort(times.begin(), times.end());

@@ -186,6 +186,9 @@ int run(tools::Tool& tool) {
     for (const std::string& spec : args.sources) sources.push_back(resolve(mesh, "--source", spec));
     geotri::geodesic::PropagationOptions options;
     options.max_distance = args.max_distance;
+    // Vertex distances and at most one path: the windows can go as the wavefront passes (memory for the wavefront
+    // only, on meshes of millions of faces), and the path is found again by a propagation towards its end.
+    options.keep_windows = false;
     for (const std::string& spec : args.stops) options.stop_points.push_back(resolve(mesh, "--stop", spec));
     std::optional<SurfacePoint> target;
     if (!args.path_to.empty()) {

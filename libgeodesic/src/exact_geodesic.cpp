@@ -49,6 +49,10 @@ constexpr int k_merge_lookahead = 4;
 
 // Windows compared with each other on an edge: the most recent ones, which are those the wavefront brings together.
 constexpr int k_compare_lookahead = 4;
+// No window further down its edge's list than this is ever read again while the propagation runs.
+constexpr int k_list_reach = std::max(k_merge_lookahead, k_compare_lookahead);
+// Without keep_windows, the windows that no longer count are freed once there are at least this many windows.
+constexpr std::size_t k_min_windows_to_free = 1 << 16;
 
 /// A hint to start loading memory that will soon be read; no effect on results.
 inline void prefetch(const void* address) {
@@ -100,6 +104,8 @@ private:
     void reset();
     void relax_vertex(int v, double distance, Predecessor predecessor);
     void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
+    void retire_beyond_reach(int id);
+    void free_retired_windows();
     bool trim_by_end_vertices(Window& w) const;
     bool trim_by_other_windows(Window& w, int self) const;
     void propagate_window(int popped);
@@ -118,6 +124,7 @@ private:
     Best best_way_to(const SurfacePoint& p) const;
     double window_value_at(const Window& w, const Vec2& p) const;
     SurfacePoint point_on_halfedge(int h, double x) const;
+    std::unique_ptr<Impl> propagation_to(const SurfacePoint& target) const;
 
     void push_queue(double key, int item);
     void push_vertex(int v);
@@ -131,7 +138,10 @@ private:
 
     // State of one propagation; reset through the touched lists so that the cost follows the explored region.
     std::vector<double> distance_;
-    std::vector<Predecessor> predecessor_;
+    std::vector<Predecessor> predecessor_;  // its window ids go stale as windows are freed without keep_windows
+    // Per vertex: where its shortest path comes in, taken when it gets its distance, since without keep_windows the
+    // window that gave it may be freed before the vertex emits.
+    std::vector<double> incoming_angle_;
     std::vector<int> touched_vertices_;
     std::vector<int> first_window_;  // per halfedge
     std::vector<int> first_pending_;  // per halfedge: its windows that have not crossed its face yet
@@ -140,6 +150,9 @@ private:
     std::vector<Window> windows_;
     std::vector<int> merged_pieces_;           // for merged windows: a count, then the ids of the pieces
     std::vector<int> merge_scratch_;
+    bool keep_windows_ = true;
+    std::size_t windows_to_free_at_ = k_min_windows_to_free;  // without keep_windows: free once there are this many
+    std::vector<int> moved_to_;  // scratch of free_retired_windows()
     // Items: a halfedge (>= 0) whose pending windows cross its face together, or -1 - v, a vertex that emits.
     detail::EventQueue queue_;
     std::vector<SurfacePoint> sources_;
@@ -164,6 +177,7 @@ ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
     distance_.assign(nv, k_infinity);
     queued_key_.assign(nv, k_infinity);
     predecessor_.assign(nv, Predecessor{});
+    incoming_angle_.assign(nv, std::numeric_limits<double>::quiet_NaN());
     first_window_.assign(mesh.num_halfedges(), -1);
     first_pending_.assign(mesh.num_halfedges(), -1);
     queued_halfedge_key_.assign(mesh.num_halfedges(), k_infinity);
@@ -205,7 +219,10 @@ void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor prede
     if (distance_[v] == k_infinity) touched_vertices_.push_back(v);
     distance_[v] = distance;
     predecessor_[v] = predecessor;
-    if (pseudo_source_[v] && distance <= max_distance_) push_vertex(v);
+    if (pseudo_source_[v] && distance <= max_distance_) {
+        incoming_angle_[v] = incoming_polar_angle(v);
+        push_vertex(v);
+    }
 }
 
 void ExactGeodesic::Impl::push_vertex(int v) {
@@ -379,6 +396,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     first_pending_[h] = id;
     w.state = k_pending;
     windows_.push_back(w);
+    if (!keep_windows_) retire_beyond_reach(id);
     ++stats_.windows_created;
     const double tolerance = k_cover * length;
     if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
@@ -396,6 +414,40 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
         queued_halfedge_key_[h] = key;
         push_queue(key, h);
     }
+}
+
+void ExactGeodesic::Impl::retire_beyond_reach(int id) {
+    int beyond = id;
+    for (int i = 0; i < k_list_reach && beyond >= 0; ++i) beyond = windows_[beyond].next_on_edge;
+    if (beyond >= 0) windows_[beyond].retired = true;
+}
+
+void ExactGeodesic::Impl::free_retired_windows() {
+    // A retired window that has crossed its face is read again only by the queries after the propagation, which
+    // keep_windows = false gives up. The others move down, in order, since the comparisons of trim_by_other_windows
+    // go by the order of the ids.
+    moved_to_.assign(windows_.size(), -1);
+    int kept = 0;
+    for (int id = 0; id < static_cast<int>(windows_.size()); ++id) {
+        if (windows_[id].retired && windows_[id].state != k_pending) continue;
+        moved_to_[id] = kept;
+        if (kept != id) windows_[kept] = windows_[id];
+        ++kept;
+    }
+    windows_.resize(kept);
+    auto moved = [this](int id) { return id < 0 ? -1 : moved_to_[id]; };
+    for (Window& w : windows_) {
+        w.next_on_edge = moved(w.next_on_edge);  // -1 past the reach: nothing walks that far
+        w.next_pending = moved(w.next_pending);
+    }
+    for (int h : touched_halfedges_) {
+        first_window_[h] = moved(first_window_[h]);
+        first_pending_[h] = moved(first_pending_[h]);
+    }
+    // Free again when as many windows have come as are left now: the work of freeing stays proportional to the
+    // windows made, and the memory to twice those that count.
+    windows_to_free_at_ = std::max(k_min_windows_to_free, 2 * windows_.size());
+    windows_.reserve(windows_to_free_at_ + windows_to_free_at_ / 16);  // room for the batch that crosses it
 }
 
 int ExactGeodesic::Impl::merge_with_siblings(int id) {
@@ -429,13 +481,16 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     Window m = w;
     m.b0 = b0;
     m.b1 = b1;
-    m.parent = -2 - static_cast<int>(merged_pieces_.size());
     m.next_on_edge = first_window_[w.halfedge];
     m.state = k_propagated;
-    merged_pieces_.push_back(static_cast<int>(pieces.size()));
-    merged_pieces_.insert(merged_pieces_.end(), pieces.begin(), pieces.end());
+    if (keep_windows_) {  // the pieces, for tracing paths back through them
+        m.parent = -2 - static_cast<int>(merged_pieces_.size());
+        merged_pieces_.push_back(static_cast<int>(pieces.size()));
+        merged_pieces_.insert(merged_pieces_.end(), pieces.begin(), pieces.end());
+    }
     first_window_[w.halfedge] = merged;
     windows_.push_back(m);
+    if (!keep_windows_) retire_beyond_reach(merged);
     stats_.windows_merged += pieces.size() - 1;
     return merged;
 }
@@ -557,7 +612,7 @@ void ExactGeodesic::Impl::emit_from_vertex(int v) {
     // A geodesic through v leaves it at least π away from where it came in, on both sides (MMP): emit only into
     // that shadow, widened by k_shadow_slack to cover rounding at its rims. Sources and boundary vertices emit all
     // around.
-    const double incoming = incoming_polar_angle(v);
+    const double incoming = incoming_angle_[v];
     const double cone = mesh_.cone_angle(v);
     const bool everywhere = std::isnan(incoming);
     const double shadow_start = incoming + M_PI - k_shadow_slack;
@@ -775,6 +830,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     reset();
     sources_ = std::move(canonical_sources);
     max_distance_ = options.max_distance;
+    keep_windows_ = options.keep_windows;
     for (const SurfacePoint& p : stop_points) stops_.emplace_back().point = p;
     for (int i = 0; i < static_cast<int>(stops_.size()); ++i) watch_stop_point(i);
     std::sort(watches_.begin(), watches_.end());
@@ -796,6 +852,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     // at their positions), so a list is cheaper than a flag per vertex of the mesh.
     std::vector<int> emitted_at_zero;
     while (!queue_.empty()) {
+        if (!keep_windows_ && windows_.size() >= windows_to_free_at_) free_retired_windows();
         const auto [key, item] = queue_.pop();
         ++stats_.queue_pops;
         // The windows of the next halfedge to pop have waited since they were made, so they are out of cache:
@@ -839,6 +896,11 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     if (!stats_.stopped_early && !stops_.empty()) all_stops_settled(k_infinity);
     if (std::isfinite(max_distance_)) settled_radius_ = std::min(settled_radius_, max_distance_);
     stats_.window_bytes = windows_.capacity() * sizeof(Window) + merged_pieces_.capacity() * sizeof(int);
+    if (!keep_windows_) {  // nothing reads them any more
+        windows_.clear();
+        windows_.shrink_to_fit();
+        windows_to_free_at_ = k_min_windows_to_free;
+    }
 }
 
 bool ExactGeodesic::Impl::is_settled_stop(const SurfacePoint& p) const {
@@ -851,9 +913,22 @@ double ExactGeodesic::Impl::vertex_distance(int v) const {
     return d <= settled_radius_ || is_settled_stop(SurfacePoint::at_vertex(v)) ? d : k_infinity;
 }
 
+std::unique_ptr<ExactGeodesic::Impl> ExactGeodesic::Impl::propagation_to(const SurfacePoint& target) const {
+    // Without keep_windows the windows are gone: a propagation from the same sources that stops at the target, its
+    // only goal, finds them again, exactly, over a region that grows with the target's distance, not with the mesh.
+    auto again = std::make_unique<Impl>(mesh_);
+    PropagationOptions options;
+    options.max_distance = max_distance_;
+    options.stop_points = {target};
+    options.goal_directed = true;
+    again->propagate(sources_, options);
+    return again;
+}
+
 double ExactGeodesic::Impl::distance(const SurfacePoint& raw) const {
     const SurfacePoint p = mesh_.canonical(raw);
-    const double d = best_way_to(p).distance;
+    const double d = keep_windows_ || p.kind == PointKind::vertex ? best_way_to(p).distance
+                                                                   : propagation_to(p)->best_way_to(p).distance;
     return d <= settled_radius_ || is_settled_stop(p) ? d : k_infinity;
 }
 
@@ -871,6 +946,12 @@ SurfacePoint ExactGeodesic::Impl::point_on_halfedge(int h, double x) const {
 
 std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint& raw_target) const {
     const SurfacePoint target = mesh_.canonical(raw_target);
+    if (!keep_windows_) {
+        const auto again = propagation_to(target);
+        const double d = again->best_way_to(target).distance;
+        return d <= settled_radius_ || is_settled_stop(target) ? again->shortest_path(target)
+                                                               : std::vector<SurfacePoint>{};
+    }
     const Best best = best_way_to(target);
     if (!std::isfinite(best.distance) || !(best.distance <= settled_radius_ || is_settled_stop(target)))
         return {};  // unreached

@@ -391,6 +391,39 @@ std::vector<SharedMesh> meshes_or_placeholder() {
 
 std::string mesh_name(const testing::TestParamInfo<SharedMesh>& info) { return info.param.test_name; }
 
+// Without keep_windows the propagation frees windows as it goes: the vertex distances must not move by a bit, and
+// a path, found again by a propagation towards its end, must still be a geodesic as long as the distance.
+TEST_P(RealMesh, freeing_windows_changes_no_vertex_distance) {
+    if (!usable()) return;
+    const geodesic::Mesh& mesh = *mesh_;
+    const std::string name = GetParam().relative_path;
+    PointSampler sampler(4321);
+    const std::vector<SurfacePoint> sources = {SurfacePoint::at_vertex(sampler.vertex(arrays_))};
+    ExactGeodesic kept(mesh), freed(mesh);
+    kept.propagate(sources);
+    PropagationOptions freeing;
+    freeing.keep_windows = false;
+    freed.propagate(sources, freeing);
+
+    FailureLog log(name + ": windows freed");
+    int farthest = -1;
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+        const double d = freed.distance(v);
+        if (!(d == kept.distance(v)))
+            log.add("v:" + std::to_string(v) + ": kept " + exact(kept.distance(v)) + ", freed " + exact(d));
+        if (d < inf && (farthest < 0 || d > freed.distance(farthest))) farthest = v;
+    }
+    const SurfacePoint target = SurfacePoint::at_vertex(farthest);
+    const PathReport report = check_geodesic_path(arrays_, Adjacency(arrays_), freed.shortest_path(target), 1e-6);
+    for (const auto& problem : report.problems) log.add("path to " + spec(target) + ": " + problem);
+    if (!near_relative(report.length, kept.distance(target), 1e-12, 1e-3 * diagonal_))
+        log.add("path to " + spec(target) + ": length " + exact(report.length) + ", distance " +
+                exact(kept.distance(target)));
+    log.report();
+    std::cout << name << ": windows " << kept.stats().windows_created << ", " << kept.stats().window_bytes / 1048576
+              << " MB kept, " << freed.stats().window_bytes / 1048576 << " MB freeing\n";
+}
+
 INSTANTIATE_TEST_SUITE_P(SharedData, RealMesh, testing::ValuesIn(meshes_or_placeholder()), mesh_name);
 
 // stress/42400-IDGH.stl has three zero-area faces whose middle vertex is a saddle. A saddle there emits across the

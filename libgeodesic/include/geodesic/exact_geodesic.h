@@ -25,6 +25,12 @@ struct PropagationOptions {
     /// settled_radius() is 0 and every point other than a stop point reports +inf. Ignored without stop points or
     /// with a max_distance.
     bool goal_directed = false;
+    /// Keep every window, so that distance() at any surface point and shortest_path() answer at once from them.
+    /// False frees the windows as the wavefront passes, so that memory holds only the wavefront (as VTP's does):
+    /// the vertex distances are the same to the bit, and those two queries then run, each time they are called, a
+    /// goal-directed propagation from the same sources to the point that they ask about. For distance fields over
+    /// large meshes, where few paths are wanted.
+    bool keep_windows = true;
 };
 
 /// Counters of the last propagation, for benchmarks and tuning.
@@ -37,7 +43,7 @@ struct PropagationStats {
     std::size_t queue_pushes = 0;        ///< queue entries: halfedges whose windows cross a face, and vertices
     std::size_t queue_pops = 0;
     std::size_t peak_queue_size = 0;
-    std::size_t window_bytes = 0;        ///< memory held by windows at the end of the propagation
+    std::size_t window_bytes = 0;        ///< memory held by windows at its largest during the propagation
     bool stopped_early = false;          ///< ended by stop points or max_distance before the queue emptied
 };
 

@@ -1,0 +1,152 @@
+// PropagationOptions::keep_windows = false frees windows as the wavefront passes. The vertex distances must be those
+// of a propagation that keeps them, to the bit; distances at other points and shortest paths, which then come from a
+// propagation to the point asked about, must agree with the kept windows' to rounding, and paths must still be as
+// long as the distance. The meshes are large enough for windows to be freed several times over.
+
+#include "check_helpers.h"
+
+#include <geotri_test/procedural_meshes.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+
+namespace geotri::test {
+namespace {
+
+using geodesic::ExactGeodesic;
+using geodesic::PropagationOptions;
+using geodesic::SurfacePoint;
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+struct MeshCase {
+    std::string name;
+    std::function<TriangleMesh()> make;
+};
+
+void PrintTo(const MeshCase& c, std::ostream* out) { *out << c.name; }
+
+std::string mesh_case_name(const testing::TestParamInfo<MeshCase>& info) { return info.param.name; }
+
+PropagationOptions freeing(PropagationOptions options = {}) {
+    options.keep_windows = false;
+    return options;
+}
+
+class KeepWindows : public testing::TestWithParam<MeshCase> {
+protected:
+    void SetUp() override {
+        arrays_ = GetParam().make();
+        mesh_ = std::make_unique<geodesic::Mesh>(arrays_.to_mesh());
+        diagonal_ = bounding_diagonal(arrays_);
+    }
+
+    // Every vertex distance equal to the bit, and the same windows made.
+    void expect_same_vertex_distances(const ExactGeodesic& kept, const ExactGeodesic& freed, const std::string& what) {
+        FailureLog log(GetParam().name + ", " + what);
+        for (int v = 0; v < mesh_->num_vertices(); ++v)
+            if (!(kept.distance(v) == freed.distance(v)))
+                log.add("v:" + std::to_string(v) + ": kept " + exact(kept.distance(v)) + ", freed " +
+                        exact(freed.distance(v)));
+        log.report();
+        EXPECT_EQ(kept.stats().windows_created, freed.stats().windows_created) << what;
+    }
+
+    TriangleMesh arrays_;
+    std::unique_ptr<geodesic::Mesh> mesh_;
+    double diagonal_ = 0.0;
+};
+
+TEST_P(KeepWindows, freeing_windows_changes_no_vertex_distance_and_holds_less_memory) {
+    PointSampler sampler(31);
+    const std::vector<std::vector<SurfacePoint>> source_sets = {
+        {SurfacePoint::at_vertex(sampler.vertex(arrays_))},
+        {SurfacePoint::at_vertex(sampler.vertex(arrays_)), sampler.edge_point(arrays_), sampler.face_point(arrays_)}};
+    ExactGeodesic kept(*mesh_), freed(*mesh_);
+    for (const auto& sources : source_sets) {
+        const std::string what = std::to_string(sources.size()) + " source(s)";
+        kept.propagate(sources);
+        freed.propagate(sources, freeing());
+        expect_same_vertex_distances(kept, freed, what);
+        EXPECT_LT(freed.stats().window_bytes, kept.stats().window_bytes)
+            << what << ": " << kept.stats().windows_created << " windows";
+    }
+}
+
+TEST_P(KeepWindows, point_distances_and_paths_without_windows_agree_with_the_kept_windows) {
+    PointSampler sampler(32);
+    const std::vector<SurfacePoint> sources = {sampler.face_point(arrays_)};
+    ExactGeodesic kept(*mesh_), freed(*mesh_);
+    kept.propagate(sources);
+    freed.propagate(sources, freeing());
+    FailureLog log(GetParam().name + ": queries without windows");
+    for (int i = 0; i < 12; ++i) {
+        const SurfacePoint p = i % 3 == 0   ? SurfacePoint::at_vertex(sampler.vertex(arrays_))
+                               : i % 3 == 1 ? sampler.edge_point(arrays_)
+                                            : sampler.face_point(arrays_);
+        const double expected = kept.distance(p), got = freed.distance(p);
+        if (!near_relative(got, expected, 1e-13, 1e-3 * diagonal_))
+            log.add(spec(p) + ": kept " + exact(expected) + ", freed " + exact(got));
+        const std::vector<SurfacePoint> path = freed.shortest_path(p);
+        if (path.size() < 2 || path.front() != mesh_->canonical(sources[0]) || path.back() != mesh_->canonical(p)) {
+            log.add(spec(p) + ": the path does not run from the source to the point");
+            continue;
+        }
+        const double length = geodesic::path_length(*mesh_, path);
+        if (!near_relative(length, got, 1e-12, 1e-3 * diagonal_))
+            log.add(spec(p) + ": path length " + exact(length) + ", distance " + exact(got));
+    }
+    log.report();
+}
+
+TEST_P(KeepWindows, stop_points_and_max_distance_are_kept_without_windows) {
+    PointSampler sampler(33);
+    const std::vector<SurfacePoint> sources = {SurfacePoint::at_vertex(sampler.vertex(arrays_))};
+    ExactGeodesic full(*mesh_);
+    full.propagate(sources);
+    const std::vector<double> all = full.vertex_distances();
+    const double farthest = *std::max_element(all.begin(), all.end());
+    // A stop point about a third of the way out, so that part of the mesh lies beyond the settled region.
+    int third = 0;
+    for (int v = 0; v < mesh_->num_vertices(); ++v)
+        if (std::abs(all[v] - farthest / 3) < std::abs(all[third] - farthest / 3)) third = v;
+
+    PropagationOptions limit;
+    limit.max_distance = 0.5 * farthest;
+    PropagationOptions stop;
+    stop.stop_points = {SurfacePoint::at_vertex(third)};
+    for (const auto& [what, options] : {std::pair{"max distance", limit}, std::pair{"stop points", stop}}) {
+        ExactGeodesic kept(*mesh_), freed(*mesh_);
+        kept.propagate(sources, options);
+        freed.propagate(sources, freeing(options));
+        expect_same_vertex_distances(kept, freed, what);
+        EXPECT_EQ(kept.settled_radius(), freed.settled_radius()) << what;
+        FailureLog log(GetParam().name + ", " + what + ": queries without windows");
+        std::vector<SurfacePoint> points = options.stop_points;
+        for (int i = 0; i < 8; ++i) points.push_back(sampler.face_point(arrays_));
+        int beyond = 0;
+        for (const SurfacePoint& p : points) {
+            const double expected = kept.distance(p), got = freed.distance(p);
+            if (!near_relative(got, expected, 1e-13, 1e-3 * diagonal_))
+                log.add(spec(p) + ": kept " + exact(expected) + ", freed " + exact(got));
+            if (expected == inf) ++beyond;
+            if (freed.shortest_path(p).empty() != (expected == inf))
+                log.add(spec(p) + ": a path " + (expected == inf ? "beyond the settled region" : "missing"));
+        }
+        EXPECT_GT(beyond, 0) << what << ": no point beyond the settled region was asked about";
+        log.report();
+    }
+}
+
+// Large enough that windows are freed several times over (from 65536 windows on), small enough for a quick test.
+INSTANTIATE_TEST_SUITE_P(ExactGeodesic, KeepWindows,
+                         testing::Values(MeshCase{"sphere", [] { return geodesic_sphere(30); }},
+                                         MeshCase{"perturbed_sphere", [] { return perturbed_sphere(30, 0.008, 2); }},
+                                         MeshCase{"torus", [] { return torus(1.0, 0.4, 160, 80); }}),
+                         mesh_case_name);
+
+}  // namespace
+}  // namespace geotri::test
