@@ -152,6 +152,7 @@ private:
     std::vector<int> merge_scratch_;
     bool keep_windows_ = true;
     std::size_t windows_to_free_at_ = k_min_windows_to_free;  // without keep_windows: free once there are this many
+    int lowest_retired_ = std::numeric_limits<int>::max();  // the first window retired since the last pass
     std::vector<int> moved_to_;  // scratch of free_retired_windows()
     // Items: a halfedge (>= 0) whose pending windows cross its face together, or -1 - v, a vertex that emits.
     detail::EventQueue queue_;
@@ -198,6 +199,8 @@ void ExactGeodesic::Impl::reset() {
     touched_vertices_.clear();
     touched_halfedges_.clear();
     windows_.clear();
+    windows_to_free_at_ = k_min_windows_to_free;
+    lowest_retired_ = std::numeric_limits<int>::max();
     merged_pieces_.clear();
     queue_.clear();
     sources_.clear();
@@ -419,35 +422,49 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
 void ExactGeodesic::Impl::retire_beyond_reach(int id) {
     int beyond = id;
     for (int i = 0; i < k_list_reach && beyond >= 0; ++i) beyond = windows_[beyond].next_on_edge;
-    if (beyond >= 0) windows_[beyond].retired = true;
+    if (beyond >= 0) {
+        windows_[beyond].retired = true;
+        lowest_retired_ = std::min(lowest_retired_, beyond);
+    }
 }
 
 void ExactGeodesic::Impl::free_retired_windows() {
     // A retired window that has crossed its face is read again only by the queries after the propagation, which
     // keep_windows = false gives up. The others move down, in order, since the comparisons of trim_by_other_windows
-    // go by the order of the ids.
-    moved_to_.assign(windows_.size(), -1);
-    int kept = 0;
-    for (int id = 0; id < static_cast<int>(windows_.size()); ++id) {
-        if (windows_[id].retired && windows_[id].state != k_pending) continue;
-        moved_to_[id] = kept;
-        if (kept != id) windows_[kept] = windows_[id];
+    // go by the order of the ids. Below the first window retired since the last pass, none moves; and since lists
+    // link each window to older ones, none of those links changes either.
+    const int size = static_cast<int>(windows_.size());
+    const int start = std::min(lowest_retired_, size);
+    lowest_retired_ = std::numeric_limits<int>::max();
+    moved_to_.assign(size - start, -1);
+    int kept = start;
+    for (int id = start; id < size; ++id) {
+        const Window& w = windows_[id];
+        if (w.retired && w.state != k_pending) continue;
+        if (w.retired) lowest_retired_ = std::min(lowest_retired_, kept);  // to be freed once it has crossed
+        moved_to_[id - start] = kept;
+        if (kept != id) windows_[kept] = w;
         ++kept;
     }
-    windows_.resize(kept);
-    auto moved = [this](int id) { return id < 0 ? -1 : moved_to_[id]; };
-    for (Window& w : windows_) {
-        w.next_on_edge = moved(w.next_on_edge);  // -1 past the reach: nothing walks that far
-        w.next_pending = moved(w.next_pending);
+    if (kept < size) {
+        windows_.resize(kept);
+        auto moved = [&](int id) { return id < start ? id : moved_to_[id - start]; };
+        for (int id = start; id < kept; ++id) {
+            windows_[id].next_on_edge = moved(windows_[id].next_on_edge);  // -1 past the reach: never walked
+            windows_[id].next_pending = moved(windows_[id].next_pending);
+        }
+        for (int h : touched_halfedges_) {
+            first_window_[h] = moved(first_window_[h]);
+            first_pending_[h] = moved(first_pending_[h]);
+        }
     }
-    for (int h : touched_halfedges_) {
-        first_window_[h] = moved(first_window_[h]);
-        first_pending_[h] = moved(first_pending_[h]);
-    }
-    // Free again when as many windows have come as are left now: the work of freeing stays proportional to the
-    // windows made, and the memory to twice those that count.
-    windows_to_free_at_ = std::max(k_min_windows_to_free, 2 * windows_.size());
-    windows_.reserve(windows_to_free_at_ + windows_to_free_at_ / 16);  // room for the batch that crosses it
+    // Free again when at least as many windows have come as are left now, so that the work of freeing stays
+    // proportional to the windows made; the storage grows by half when that does not fit, and not at every pass,
+    // since a new block is copied into and its pages are first touched, which costs more than the pass itself.
+    const std::size_t wanted = std::max(k_min_windows_to_free, 2 * windows_.size());
+    const std::size_t room = wanted + wanted / 16;  // for the batch that crosses the threshold
+    if (room > windows_.capacity()) windows_.reserve(std::max(room, windows_.capacity() + windows_.capacity() / 2));
+    windows_to_free_at_ = windows_.capacity() - windows_.capacity() / 17;
 }
 
 int ExactGeodesic::Impl::merge_with_siblings(int id) {
@@ -896,11 +913,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     if (!stats_.stopped_early && !stops_.empty()) all_stops_settled(k_infinity);
     if (std::isfinite(max_distance_)) settled_radius_ = std::min(settled_radius_, max_distance_);
     stats_.window_bytes = windows_.capacity() * sizeof(Window) + merged_pieces_.capacity() * sizeof(int);
-    if (!keep_windows_) {  // nothing reads them any more
-        windows_.clear();
-        windows_.shrink_to_fit();
-        windows_to_free_at_ = k_min_windows_to_free;
-    }
+    if (!keep_windows_) windows_.clear();  // nothing reads them any more; the storage stays for the next propagation
 }
 
 bool ExactGeodesic::Impl::is_settled_stop(const SurfacePoint& p) const {
