@@ -458,10 +458,10 @@ void ExactGeodesic::Impl::free_retired_windows() {
             first_pending_[h] = moved(first_pending_[h]);
         }
     }
-    // Free again when at least as many windows have come as are left now, so that the work of freeing stays
+    // Free again when at least half as many windows have come as are left now, so that the work of freeing stays
     // proportional to the windows made; the storage grows by half when that does not fit, and not at every pass,
     // since a new block is copied into and its pages are first touched, which costs more than the pass itself.
-    const std::size_t wanted = std::max(k_min_windows_to_free, 2 * windows_.size());
+    const std::size_t wanted = std::max(k_min_windows_to_free, windows_.size() + windows_.size() / 2);
     const std::size_t room = wanted + wanted / 16;  // for the batch that crosses the threshold
     if (room > windows_.capacity()) windows_.reserve(std::max(room, windows_.capacity() + windows_.capacity() / 2));
     windows_to_free_at_ = windows_.capacity() - windows_.capacity() / 17;
