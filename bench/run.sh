@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the propagation benchmark on the meshes of the libgeodesic issue and prints a Markdown table on stdout.
 #
-#   bench/run.sh [--no-cgal] [--repeat N]
+#   bench/run.sh [--no-cgal] [--repeat N] [--keep-windows]
 #
 # Builds geotri-bench-propagation in Release (with CGAL when libcgal-dev is installed: scripts/install-deps.sh
 # --bench). The shared real meshes are read from ../shared/data, or from $GEOTRI_SHARED_DATA; those that are
@@ -27,8 +27,8 @@ for file in classic/lucy_100k.ply classic/bunny_closed_cgal.off anatomy/brain_co
   fi
 done
 
-# The 1M-face sphere comes last: its windows need about 12 GB, more on the way as their storage grows, and a
-# machine without that much memory must still get the other rows.
+# The 1M-face sphere comes last: it takes the longest, and with --keep-windows its windows need about 12 GB,
+# more on the way as their storage grows; a machine without that much memory must still get the other rows.
 meshes+=(gen:icosphere:1M)
 
 header=()
