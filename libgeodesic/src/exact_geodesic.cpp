@@ -124,7 +124,9 @@ private:
     Best best_way_to(const SurfacePoint& p) const;
     double window_value_at(const Window& w, const Vec2& p) const;
     SurfacePoint point_on_halfedge(int h, double x) const;
-    std::unique_ptr<Impl> propagation_to(const SurfacePoint& target) const;
+    std::unique_ptr<Impl> propagation_to(const std::vector<SurfacePoint>& sources, const SurfacePoint& target,
+                                         double max_distance = k_infinity) const;
+    std::vector<SurfacePoint> path_through_pseudo_sources(int v) const;
 
     void push_queue(double key, int item);
     void push_vertex(int v);
@@ -142,6 +144,9 @@ private:
     // Per vertex: where its shortest path comes in, taken when it gets its distance, since without keep_windows the
     // window that gave it may be freed before the vertex emits.
     std::vector<double> incoming_angle_;
+    // Per vertex: the pseudo-source its shortest path comes straight from (a vertex, or -1 - source index), so that
+    // without keep_windows a path is found again leg by leg, each leg by a propagation from that pseudo-source only.
+    std::vector<int> origin_;
     std::vector<int> touched_vertices_;
     std::vector<int> first_window_;  // per halfedge
     std::vector<int> first_pending_;  // per halfedge: its windows that have not crossed its face yet
@@ -179,6 +184,7 @@ ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
     queued_key_.assign(nv, k_infinity);
     predecessor_.assign(nv, Predecessor{});
     incoming_angle_.assign(nv, std::numeric_limits<double>::quiet_NaN());
+    origin_.assign(nv, -1);
     first_window_.assign(mesh.num_halfedges(), -1);
     first_pending_.assign(mesh.num_halfedges(), -1);
     queued_halfedge_key_.assign(mesh.num_halfedges(), k_infinity);
@@ -222,6 +228,12 @@ void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor prede
     if (distance_[v] == k_infinity) touched_vertices_.push_back(v);
     distance_[v] = distance;
     predecessor_[v] = predecessor;
+    switch (predecessor.via) {
+        case Via::window: origin_[v] = windows_[predecessor.id].origin; break;
+        case Via::vertex: origin_[v] = predecessor.id; break;
+        case Via::source: origin_[v] = -1 - predecessor.id; break;
+        case Via::none: break;
+    }
     if (pseudo_source_[v] && distance <= max_distance_) {
         incoming_angle_[v] = incoming_polar_angle(v);
         push_vertex(v);
@@ -926,22 +938,46 @@ double ExactGeodesic::Impl::vertex_distance(int v) const {
     return d <= settled_radius_ || is_settled_stop(SurfacePoint::at_vertex(v)) ? d : k_infinity;
 }
 
-std::unique_ptr<ExactGeodesic::Impl> ExactGeodesic::Impl::propagation_to(const SurfacePoint& target) const {
-    // Without keep_windows the windows are gone: a propagation from the same sources that stops at the target, its
-    // only goal, finds them again, exactly, over a region that grows with the target's distance, not with the mesh.
+std::unique_ptr<ExactGeodesic::Impl> ExactGeodesic::Impl::propagation_to(const std::vector<SurfacePoint>& sources,
+                                                                          const SurfacePoint& target,
+                                                                          double max_distance) const {
+    // Without keep_windows the windows are gone: a propagation that stops at the target, its only goal, finds them
+    // again, exactly, over a region that grows with the target's distance from `sources`, not with the mesh.
     auto again = std::make_unique<Impl>(mesh_);
     PropagationOptions options;
-    options.max_distance = max_distance_;
+    options.max_distance = max_distance;
     options.stop_points = {target};
     options.goal_directed = true;
-    again->propagate(sources_, options);
+    again->propagate(sources, options);
     return again;
+}
+
+std::vector<SurfacePoint> ExactGeodesic::Impl::path_through_pseudo_sources(int v) const {
+    // A vertex's shortest path comes straight (through no vertex) from its pseudo-source o, and o's from its own, back
+    // to a source. The shortest path from o to v alone is as long as that leg (a shorter one would make v nearer),
+    // so each leg is found by a propagation from its pseudo-source only, which ends near it on most real meshes.
+    std::vector<int> chain{v};
+    while (origin_[chain.back()] >= 0) {
+        chain.push_back(origin_[chain.back()]);
+        if (chain.size() > touched_vertices_.size() + 1)
+            throw NumericalError("shortest path could not be traced back to a source");
+    }
+    const SurfacePoint& source = sources_[-1 - origin_[chain.back()]];
+    std::vector<SurfacePoint> path;
+    for (std::size_t i = chain.size(); i-- > 0;) {
+        const SurfacePoint from = i + 1 < chain.size() ? SurfacePoint::at_vertex(chain[i + 1]) : source;
+        const SurfacePoint to = SurfacePoint::at_vertex(chain[i]);
+        const std::vector<SurfacePoint> leg = propagation_to({from}, to)->shortest_path(to);
+        if (leg.empty()) throw NumericalError("shortest path could not be traced back to a source");
+        path.insert(path.end(), leg.begin() + (path.empty() ? 0 : 1), leg.end());
+    }
+    return path;
 }
 
 double ExactGeodesic::Impl::distance(const SurfacePoint& raw) const {
     const SurfacePoint p = mesh_.canonical(raw);
     const double d = keep_windows_ || p.kind == PointKind::vertex ? best_way_to(p).distance
-                                                                   : propagation_to(p)->best_way_to(p).distance;
+                                                                   : propagation_to(sources_, p, max_distance_)->best_way_to(p).distance;
     return d <= settled_radius_ || is_settled_stop(p) ? d : k_infinity;
 }
 
@@ -959,8 +995,12 @@ SurfacePoint ExactGeodesic::Impl::point_on_halfedge(int h, double x) const {
 
 std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint& raw_target) const {
     const SurfacePoint target = mesh_.canonical(raw_target);
+    if (!keep_windows_ && target.kind == PointKind::vertex) {
+        const double d = vertex_distance(target.vertex);
+        return std::isfinite(d) ? path_through_pseudo_sources(target.vertex) : std::vector<SurfacePoint>{};
+    }
     if (!keep_windows_) {
-        const auto again = propagation_to(target);
+        const auto again = propagation_to(sources_, target, max_distance_);
         const double d = again->best_way_to(target).distance;
         return d <= settled_radius_ || is_settled_stop(target) ? again->shortest_path(target)
                                                                : std::vector<SurfacePoint>{};

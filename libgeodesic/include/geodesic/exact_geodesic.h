@@ -27,9 +27,11 @@ struct PropagationOptions {
     bool goal_directed = false;
     /// Keep every window, so that distance() at any surface point and shortest_path() answer at once from them.
     /// False frees the windows as the wavefront passes, so that memory holds only the wavefront (as VTP's does):
-    /// the vertex distances are the same to the bit, and those two queries then run, each time they are called, a
-    /// goal-directed propagation from the same sources to the point that they ask about. For distance fields over
-    /// large meshes, where few paths are wanted.
+    /// the vertex distances are the same to the bit, and those two queries then run new propagations each time
+    /// they are called: a path to a vertex, leg by leg from each pseudo-source (saddle vertex) that it passes,
+    /// each leg by a goal-directed propagation from that vertex alone; a distance or a path at any other point, by
+    /// a goal-directed propagation from the sources to it. For distance fields over large meshes, where few paths
+    /// are wanted.
     bool keep_windows = true;
 };
 
