@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -134,5 +135,29 @@ inline void sweep_against_oracle(const TriangleMesh& arrays, const geodesic::Mes
     paths.report();
     representation.report();
 }
+
+/// A generated mesh for parameterised tests, named in the test's name.
+struct MeshCase {
+    std::string name;
+    std::function<TriangleMesh()> make;
+};
+
+inline void PrintTo(const MeshCase& c, std::ostream* out) { *out << c.name; }
+
+inline std::string mesh_case_name(const testing::TestParamInfo<MeshCase>& info) { return info.param.name; }
+
+/// A test over MeshCases: the mesh as arrays and as a geodesic::Mesh, and its bounding diagonal.
+class GeneratedMeshTest : public testing::TestWithParam<MeshCase> {
+protected:
+    void SetUp() override {
+        arrays_ = GetParam().make();
+        mesh_ = std::make_unique<geodesic::Mesh>(arrays_.to_mesh());
+        diagonal_ = bounding_diagonal(arrays_);
+    }
+
+    TriangleMesh arrays_;
+    std::unique_ptr<geodesic::Mesh> mesh_;
+    double diagonal_ = 0.0;
+};
 
 }  // namespace geotri::test

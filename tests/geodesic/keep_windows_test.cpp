@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <functional>
 #include <limits>
 
 namespace geotri::test {
@@ -22,28 +21,13 @@ using geodesic::SurfacePoint;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-struct MeshCase {
-    std::string name;
-    std::function<TriangleMesh()> make;
-};
-
-void PrintTo(const MeshCase& c, std::ostream* out) { *out << c.name; }
-
-std::string mesh_case_name(const testing::TestParamInfo<MeshCase>& info) { return info.param.name; }
-
 PropagationOptions freeing(PropagationOptions options = {}) {
     options.keep_windows = false;
     return options;
 }
 
-class KeepWindows : public testing::TestWithParam<MeshCase> {
+class KeepWindows : public GeneratedMeshTest {
 protected:
-    void SetUp() override {
-        arrays_ = GetParam().make();
-        mesh_ = std::make_unique<geodesic::Mesh>(arrays_.to_mesh());
-        diagonal_ = bounding_diagonal(arrays_);
-    }
-
     // Every vertex distance equal to the bit, and the same windows made.
     void expect_same_vertex_distances(const ExactGeodesic& kept, const ExactGeodesic& freed, const std::string& what) {
         FailureLog log(GetParam().name + ", " + what);
@@ -54,10 +38,6 @@ protected:
         log.report();
         EXPECT_EQ(kept.stats().windows_created, freed.stats().windows_created) << what;
     }
-
-    TriangleMesh arrays_;
-    std::unique_ptr<geodesic::Mesh> mesh_;
-    double diagonal_ = 0.0;
 };
 
 TEST_P(KeepWindows, freeing_windows_changes_no_vertex_distance_and_holds_less_memory) {

@@ -19,22 +19,8 @@ using geodesic::SurfacePoint;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-struct MeshCase {
-    std::string name;
-    std::function<TriangleMesh()> make;
-};
-
-void PrintTo(const MeshCase& c, std::ostream* out) { *out << c.name; }
-
-std::string mesh_case_name(const testing::TestParamInfo<MeshCase>& info) { return info.param.name; }
-
-class Options : public testing::TestWithParam<MeshCase> {
+class Options : public GeneratedMeshTest {
 protected:
-    void SetUp() override {
-        arrays_ = GetParam().make();
-        mesh_ = std::make_unique<geodesic::Mesh>(arrays_.to_mesh());
-        diagonal_ = bounding_diagonal(arrays_);
-    }
     double full_distance(const std::vector<SurfacePoint>& sources, const SurfacePoint& at) const {
         ExactGeodesic propagation(*mesh_);
         propagation.propagate(sources);
@@ -45,10 +31,6 @@ protected:
         propagation.propagate(sources);
         return propagation.vertex_distances();
     }
-
-    TriangleMesh arrays_;
-    std::unique_ptr<geodesic::Mesh> mesh_;
-    double diagonal_ = 0.0;
 };
 
 TEST_P(Options, several_sources_give_the_minimum_of_single_source_distances) {
