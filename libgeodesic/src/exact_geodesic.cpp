@@ -976,8 +976,9 @@ std::vector<SurfacePoint> ExactGeodesic::Impl::path_through_pseudo_sources(int v
 
 double ExactGeodesic::Impl::distance(const SurfacePoint& raw) const {
     const SurfacePoint p = mesh_.canonical(raw);
-    const double d = keep_windows_ || p.kind == PointKind::vertex ? best_way_to(p).distance
-                                                                   : propagation_to(sources_, p, max_distance_)->best_way_to(p).distance;
+    const double d = keep_windows_ || p.kind == PointKind::vertex
+                         ? best_way_to(p).distance
+                         : propagation_to(sources_, p, max_distance_)->best_way_to(p).distance;
     return d <= settled_radius_ || is_settled_stop(p) ? d : k_infinity;
 }
 
