@@ -125,7 +125,10 @@ TEST_P(KeepWindows, stop_points_and_max_distance_are_kept_without_windows) {
 INSTANTIATE_TEST_SUITE_P(ExactGeodesic, KeepWindows,
                          testing::Values(MeshCase{"sphere", [] { return geodesic_sphere(30); }},
                                          MeshCase{"perturbed_sphere", [] { return perturbed_sphere(30, 0.008, 2); }},
-                                         MeshCase{"torus", [] { return torus(1.0, 0.4, 160, 80); }}),
+                                         MeshCase{"torus", [] { return torus(1.0, 0.4, 160, 80); }},
+                                         // Paths bend at its reflex corners: paths found again leg by leg.
+                                         MeshCase{"flat_s_shape",
+                                                  [] { return flat_cell_polygon(s_shape_cells(), 32, 0.2, 6); }}),
                          mesh_case_name);
 
 }  // namespace
