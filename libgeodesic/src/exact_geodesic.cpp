@@ -399,7 +399,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     b1 = std::min(b1, length);
     if (!(b0 < b1)) return;
     Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, first_window_[h]};
-    if (w.lower_bound() > max_distance_) return;
+    if (max_distance_ < k_infinity && w.lower_bound() > max_distance_) return;  // a square root saved otherwise
     if (!trim_by_end_vertices(w) || !trim_by_other_windows(w, -1)) {
         ++stats_.windows_pruned;
         return;
