@@ -141,11 +141,12 @@ private:
     // State of one propagation; reset through the touched lists so that the cost follows the explored region.
     std::vector<double> distance_;
     std::vector<Predecessor> predecessor_;  // its window ids go stale as windows are freed without keep_windows
-    // Per vertex: where its shortest path comes in, taken when it gets its distance, since without keep_windows the
-    // window that gave it may be freed before the vertex emits.
+    // Per vertex, without keep_windows: where its shortest path comes in, taken when it gets its distance, since the
+    // window that gave it may be freed before the vertex emits. (With them, it is taken when the vertex emits: many
+    // vertices are reached again, or never emit in a propagation that stops early.)
     std::vector<double> incoming_angle_;
-    // Per vertex: the pseudo-source its shortest path comes straight from (a vertex, or -1 - source index), so that
-    // without keep_windows a path is found again leg by leg, each leg by a propagation from that pseudo-source only.
+    // Per vertex, without keep_windows: the pseudo-source its shortest path comes straight from (a vertex, or -1 -
+    // source index), so that a path is found again leg by leg, each leg by a propagation from it alone.
     std::vector<int> origin_;
     std::vector<int> touched_vertices_;
     std::vector<int> first_window_;  // per halfedge
@@ -228,14 +229,16 @@ void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor prede
     if (distance_[v] == k_infinity) touched_vertices_.push_back(v);
     distance_[v] = distance;
     predecessor_[v] = predecessor;
-    switch (predecessor.via) {
-        case Via::window: origin_[v] = windows_[predecessor.id].origin; break;
-        case Via::vertex: origin_[v] = predecessor.id; break;
-        case Via::source: origin_[v] = -1 - predecessor.id; break;
-        case Via::none: break;
+    if (!keep_windows_) {
+        switch (predecessor.via) {
+            case Via::window: origin_[v] = windows_[predecessor.id].origin; break;
+            case Via::vertex: origin_[v] = predecessor.id; break;
+            case Via::source: origin_[v] = -1 - predecessor.id; break;
+            case Via::none: break;
+        }
     }
     if (pseudo_source_[v] && distance <= max_distance_) {
-        incoming_angle_[v] = incoming_polar_angle(v);
+        if (!keep_windows_) incoming_angle_[v] = incoming_polar_angle(v);
         push_vertex(v);
     }
 }
@@ -641,7 +644,7 @@ void ExactGeodesic::Impl::emit_from_vertex(int v) {
     // A geodesic through v leaves it at least π away from where it came in, on both sides (MMP): emit only into
     // that shadow, widened by k_shadow_slack to cover rounding at its rims. Sources and boundary vertices emit all
     // around.
-    const double incoming = incoming_angle_[v];
+    const double incoming = keep_windows_ ? incoming_polar_angle(v) : incoming_angle_[v];
     const double cone = mesh_.cone_angle(v);
     const bool everywhere = std::isnan(incoming);
     const double shadow_start = incoming + M_PI - k_shadow_slack;
