@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -124,8 +125,9 @@ private:
     Best best_way_to(const SurfacePoint& p) const;
     double window_value_at(const Window& w, const Vec2& p) const;
     SurfacePoint point_on_halfedge(int h, double x) const;
-    std::unique_ptr<Impl> propagation_to(const std::vector<SurfacePoint>& sources, const SurfacePoint& target,
-                                         double max_distance = k_infinity) const;
+    class Scratch;
+    void propagate_towards(const std::vector<SurfacePoint>& sources, const SurfacePoint& target,
+                           double max_distance = k_infinity);
     std::vector<SurfacePoint> path_through_pseudo_sources(int v) const;
 
     void push_queue(double key, int item);
@@ -160,6 +162,10 @@ private:
     std::size_t windows_to_free_at_ = k_min_windows_to_free;  // without keep_windows: free once there are this many
     int lowest_retired_ = std::numeric_limits<int>::max();  // the first window retired since the last pass
     std::vector<int> moved_to_;  // scratch of free_retired_windows()
+    // Without keep_windows: the propagation that the queries run again, kept between them so that each costs what it
+    // explores, not the mesh's size. A query takes it, and one that comes meanwhile (from another thread) makes its own.
+    mutable std::unique_ptr<Impl> scratch_;
+    mutable std::mutex scratch_mutex_;
     // Items: a halfedge (>= 0) whose pending windows cross its face together, or -1 - v, a vertex that emits.
     detail::EventQueue queue_;
     std::vector<SurfacePoint> sources_;
@@ -463,6 +469,7 @@ void ExactGeodesic::Impl::free_retired_windows() {
     }
     if (kept < size) {
         windows_.resize(kept);
+        stats_.windows_freed += static_cast<std::size_t>(size - kept);
         auto moved = [&](int id) { return id < start ? id : moved_to_[id - start]; };
         for (int id = start; id < kept; ++id) {
             windows_[id].next_on_edge = moved(windows_[id].next_on_edge);  // -1 past the reach: never walked
@@ -860,6 +867,11 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     for (const SurfacePoint& s : options.stop_points) stop_points.push_back(mesh_.canonical(s));
 
     reset();
+    // Storage that kept every window of an earlier propagation would make this one free nothing for long.
+    if (keep_windows_ && !options.keep_windows) {
+        windows_ = std::vector<Window>();
+        merged_pieces_ = std::vector<int>();
+    }
     sources_ = std::move(canonical_sources);
     max_distance_ = options.max_distance;
     keep_windows_ = options.keep_windows;
@@ -941,18 +953,39 @@ double ExactGeodesic::Impl::vertex_distance(int v) const {
     return d <= settled_radius_ || is_settled_stop(SurfacePoint::at_vertex(v)) ? d : k_infinity;
 }
 
-std::unique_ptr<ExactGeodesic::Impl> ExactGeodesic::Impl::propagation_to(const std::vector<SurfacePoint>& sources,
-                                                                          const SurfacePoint& target,
-                                                                          double max_distance) const {
+/// The owner's scratch propagation for the length of one query, or a new one when another query holds it.
+class ExactGeodesic::Impl::Scratch {
+public:
+    explicit Scratch(const Impl& owner) : owner_(owner) {
+        {
+            std::lock_guard<std::mutex> lock(owner.scratch_mutex_);
+            impl_ = std::move(owner.scratch_);
+        }
+        if (!impl_) impl_ = std::make_unique<Impl>(owner.mesh_);
+    }
+    ~Scratch() {
+        impl_->windows_ = std::vector<Window>();  // memory for the wavefront only, between queries too
+        std::lock_guard<std::mutex> lock(owner_.scratch_mutex_);
+        if (!owner_.scratch_) owner_.scratch_ = std::move(impl_);
+    }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+    Impl* operator->() const { return impl_.get(); }
+
+private:
+    const Impl& owner_;
+    std::unique_ptr<Impl> impl_;
+};
+
+void ExactGeodesic::Impl::propagate_towards(const std::vector<SurfacePoint>& sources, const SurfacePoint& target,
+                                            double max_distance) {
     // Without keep_windows the windows are gone: a propagation that stops at the target, its only goal, finds them
     // again, exactly, over a region that grows with the target's distance from `sources`, not with the mesh.
-    auto again = std::make_unique<Impl>(mesh_);
     PropagationOptions options;
     options.max_distance = max_distance;
     options.stop_points = {target};
     options.goal_directed = true;
-    again->propagate(sources, options);
-    return again;
+    propagate(sources, options);
 }
 
 std::vector<SurfacePoint> ExactGeodesic::Impl::path_through_pseudo_sources(int v) const {
@@ -966,22 +999,29 @@ std::vector<SurfacePoint> ExactGeodesic::Impl::path_through_pseudo_sources(int v
             throw NumericalError("shortest path could not be traced back to a source");
     }
     const SurfacePoint& source = sources_[-1 - origin_[chain.back()]];
-    std::vector<SurfacePoint> path;
+    const Scratch scratch(*this);
+    std::vector<SurfacePoint> path{source};
     for (std::size_t i = chain.size(); i-- > 0;) {
-        const SurfacePoint from = i + 1 < chain.size() ? SurfacePoint::at_vertex(chain[i + 1]) : source;
-        const SurfacePoint to = SurfacePoint::at_vertex(chain[i]);
-        const std::vector<SurfacePoint> leg = propagation_to({from}, to)->shortest_path(to);
+        const SurfacePoint from = path.back(), to = SurfacePoint::at_vertex(chain[i]);
+        if (from == to) continue;  // v is the source
+        scratch->propagate_towards({from}, to);
+        const std::vector<SurfacePoint> leg = scratch->shortest_path(to);
         if (leg.empty()) throw NumericalError("shortest path could not be traced back to a source");
-        path.insert(path.end(), leg.begin() + (path.empty() ? 0 : 1), leg.end());
+        path.insert(path.end(), leg.begin() + 1, leg.end());
     }
     return path;
 }
 
 double ExactGeodesic::Impl::distance(const SurfacePoint& raw) const {
     const SurfacePoint p = mesh_.canonical(raw);
-    const double d = keep_windows_ || p.kind == PointKind::vertex
-                         ? best_way_to(p).distance
-                         : propagation_to(sources_, p, max_distance_)->best_way_to(p).distance;
+    double d;
+    if (keep_windows_ || p.kind == PointKind::vertex) {
+        d = best_way_to(p).distance;
+    } else {
+        const Scratch scratch(*this);
+        scratch->propagate_towards(sources_, p, max_distance_);
+        d = scratch->best_way_to(p).distance;
+    }
     return d <= settled_radius_ || is_settled_stop(p) ? d : k_infinity;
 }
 
@@ -1004,9 +1044,10 @@ std::vector<SurfacePoint> ExactGeodesic::Impl::shortest_path(const SurfacePoint&
         return std::isfinite(d) ? path_through_pseudo_sources(target.vertex) : std::vector<SurfacePoint>{};
     }
     if (!keep_windows_) {
-        const auto again = propagation_to(sources_, target, max_distance_);
-        const double d = again->best_way_to(target).distance;
-        return d <= settled_radius_ || is_settled_stop(target) ? again->shortest_path(target)
+        const Scratch scratch(*this);
+        scratch->propagate_towards(sources_, target, max_distance_);
+        const double d = scratch->best_way_to(target).distance;
+        return d <= settled_radius_ || is_settled_stop(target) ? scratch->shortest_path(target)
                                                                : std::vector<SurfacePoint>{};
     }
     const Best best = best_way_to(target);

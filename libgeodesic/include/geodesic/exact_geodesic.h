@@ -26,12 +26,13 @@ struct PropagationOptions {
     /// with a max_distance.
     bool goal_directed = false;
     /// Keep every window, so that distance() at any surface point and shortest_path() answer at once from them.
-    /// False frees the windows as the wavefront passes, so that memory holds only the wavefront (as VTP's does):
-    /// the vertex distances are the same to the bit, and those two queries then run new propagations each time
-    /// they are called: a path to a vertex, leg by leg from each pseudo-source (saddle vertex) that it passes,
-    /// each leg by a goal-directed propagation from that vertex alone; a distance or a path at any other point, by
-    /// a goal-directed propagation from the sources to it. For distance fields over large meshes, where few paths
-    /// are wanted.
+    /// False frees the windows that the propagation will not read again: those that have crossed their face and
+    /// are not among the 4 most recent of their edge (about 60-80 MB per 100k faces reached on curved meshes, against
+    /// 130-510 MB). The vertex distances are the same to the bit, and those two queries then run new propagations
+    /// each time they are called: a path to a vertex, leg by leg from each pseudo-source that it passes (a saddle or
+    /// boundary vertex), each leg by a goal-directed propagation from there alone; a distance or a path at any
+    /// other point, by a goal-directed propagation from the sources to it. For distance fields over large meshes,
+    /// where few paths are wanted.
     bool keep_windows = true;
 };
 
@@ -41,6 +42,7 @@ struct PropagationStats {
     std::size_t windows_propagated = 0;  ///< windows carried across a face
     std::size_t windows_pruned = 0;      ///< windows dropped as dominated by a vertex
     std::size_t windows_merged = 0;      ///< fragments of one ray family merged before crossing a face
+    std::size_t windows_freed = 0;       ///< without keep_windows: windows freed while the propagation ran
     std::size_t vertex_emissions = 0;    ///< saddle, boundary or source vertices that emitted windows
     std::size_t queue_pushes = 0;        ///< queue entries: halfedges whose windows cross a face, and vertices
     std::size_t queue_pops = 0;
