@@ -162,8 +162,9 @@ private:
     std::size_t windows_to_free_at_ = k_min_windows_to_free;  // without keep_windows: free once there are this many
     int lowest_retired_ = std::numeric_limits<int>::max();  // the first window retired since the last pass
     std::vector<int> moved_to_;  // scratch of free_retired_windows()
-    // Without keep_windows: the propagation that the queries run again, kept between them so that each costs what it
-    // explores, not the mesh's size. A query takes it, and one that comes meanwhile (from another thread) makes its own.
+    // Without keep_windows: the propagation that the queries run again, kept between them so that each costs what
+    // it explores, not the mesh's size. A query takes it; one that comes meanwhile (from another thread) makes its
+    // own.
     mutable std::unique_ptr<Impl> scratch_;
     mutable std::mutex scratch_mutex_;
     // Items: a halfedge (>= 0) whose pending windows cross its face together, or -1 - v, a vertex that emits.

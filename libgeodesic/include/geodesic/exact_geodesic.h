@@ -28,11 +28,11 @@ struct PropagationOptions {
     /// Keep every window, so that distance() at any surface point and shortest_path() answer at once from them.
     /// False frees the windows that the propagation will not read again: those that have crossed their face and
     /// are not among the 4 most recent of their edge (about 60-80 MB per 100k faces reached on curved meshes,
-    /// against 130-510 MB). The vertex distances are the same to the bit, and those two queries then run new propagations
-    /// each time they are called: a path to a vertex, leg by leg from each pseudo-source that it passes (a saddle or
-    /// boundary vertex), each leg by a goal-directed propagation from there alone; a distance or a path at any
-    /// other point, by a goal-directed propagation from the sources to it. For distance fields over large meshes,
-    /// where few paths are wanted.
+    /// against 130-510 MB). The vertex distances are the same to the bit, and those two queries then run new
+    /// propagations each time they are called: a path to a vertex, leg by leg from each pseudo-source that it
+    /// passes (a saddle or boundary vertex), each leg by a goal-directed propagation from there alone; a distance
+    /// or a path at any other point, by a goal-directed propagation from the sources to it. For distance fields
+    /// over large meshes, where few paths are wanted.
     bool keep_windows = true;
 };
 
