@@ -523,6 +523,7 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     m.b1 = b1;
     m.next_on_edge = first_window_[w.halfedge];
     m.state = k_propagated;
+    m.retired = false;  // it is the newest of its edge, whatever the piece it was copied from
     if (keep_windows_) {  // the pieces, for tracing paths back through them
         m.parent = -2 - static_cast<int>(merged_pieces_.size());
         merged_pieces_.push_back(static_cast<int>(pieces.size()));
