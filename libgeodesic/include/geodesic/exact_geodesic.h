@@ -47,7 +47,8 @@ struct PropagationStats {
     std::size_t queue_pushes = 0;        ///< queue entries: halfedges whose windows cross a face, and vertices
     std::size_t queue_pops = 0;
     std::size_t peak_queue_size = 0;
-    std::size_t window_bytes = 0;        ///< memory held by windows at its largest during the propagation
+    std::size_t window_bytes = 0;        ///< memory held by the windows' storage at the end (its largest during
+                                         ///< the propagation; the storage is kept for the next one)
     bool stopped_early = false;          ///< ended by stop points or max_distance before the queue emptied
 };
 
