@@ -99,7 +99,9 @@ TEST_P(KeepWindows, one_object_alternating_between_keeping_and_freeing_gives_fre
         const ExactGeodesic& fresh = keep ? fresh_kept : fresh_freed;
         expect_same_vertex_distances(fresh, reused, what);
         // The storage that held every window is let go, or the freeing would wait for it to fill.
-        if (!keep) EXPECT_EQ(reused.stats().window_bytes, fresh_freed.stats().window_bytes) << what;
+        if (!keep) {
+            EXPECT_EQ(reused.stats().window_bytes, fresh_freed.stats().window_bytes) << what;
+        }
     }
 }
 
