@@ -389,8 +389,8 @@ bool ExactGeodesic::Impl::trim_by_other_windows(Window& w, int self) const {
         if (list < 0) continue;
         int looked = 0;
         for (int id = first_window_[list]; id >= 0 && looked < k_compare_lookahead; id = windows_[id].next_on_edge) {
-            if (id <= self) break;  // compared when self was added
-            ++looked;
+            ++looked;  // w itself counts: no window beyond the reach is read
+            if (id == self) continue;
             const Window& other = windows_[id];
             const EdgeProfile theirs{side == 0 ? other.sx : length - other.sx, other.sy, other.sigma};
             const double o0 = side == 0 ? other.b0 : length - other.b1;
@@ -410,7 +410,9 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     if (!(b0 < b1)) return;
     Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, first_window_[h]};
     if (max_distance_ < k_infinity && w.lower_bound() > max_distance_) return;  // a square root saved otherwise
-    if (!trim_by_end_vertices(w) || !trim_by_other_windows(w, -1)) {
+    // Other windows are compared with it only when it is about to cross its face, once: comparing at both times
+    // pruned 20% more windows but cost more than it saved (the 100k icosphere 1.24 -> 0.99 s, lucy_100k 0.40 -> 0.33).
+    if (!trim_by_end_vertices(w)) {
         ++stats_.windows_pruned;
         return;
     }
