@@ -379,11 +379,46 @@ private:
             }
             if (around.empty() && nodes_[u].cycle < 0) continue;
             std::sort(around.begin(), around.end());
+            order_boundary_targets(u, around);
             std::vector<int>& rot = rotation_[u];
             if (nodes_[u].cycle >= 0) rot.push_back((u + 1) % boundary_count_);
             for (const auto& [angle, v] : around) rot.push_back(v);
             if (nodes_[u].cycle >= 0) rot.push_back((u + boundary_count_ - 1) % boundary_count_);
         }
+    }
+
+    /// Seen from any point of the (convex) fine face, its boundary points come in the order of the boundary cycle.
+    /// Two chords to boundary points that nearly coincide (the geodesics of an invalid G that overlap) can have
+    /// their angles swapped by rounding, and the faces traced from a wrong rotation overlap: the chords' ends are
+    /// put back in cycle order, in the places that they took among the chords to inside points.
+    void order_boundary_targets(int u, std::vector<std::pair<double, int>>& around) {
+        std::vector<int>& slots = scratch_slots_;
+        std::vector<int>& targets = scratch_targets_;
+        slots.clear();
+        targets.clear();
+        for (int k = 0; k < static_cast<int>(around.size()); ++k) {
+            if (nodes_[around[k].second].cycle < 0) continue;
+            slots.push_back(k);
+            targets.push_back(around[k].second);
+        }
+        const int m = static_cast<int>(targets.size());
+        if (m < 2) return;
+        // From a boundary point the order starts after it; from an inside point it is cyclic, and the rotation of
+        // it that agrees best with the angles is taken.
+        const int start = nodes_[u].cycle >= 0 ? nodes_[u].cycle + 1 : 0;
+        auto offset = [&](int v) { return (nodes_[v].cycle - start + boundary_count_) % boundary_count_; };
+        std::vector<int> by_cycle(targets);
+        std::sort(by_cycle.begin(), by_cycle.end(), [&](int a, int b) { return offset(a) < offset(b); });
+        int shift = 0;
+        if (nodes_[u].cycle < 0) {
+            int best_agree = -1;
+            for (int r = 0; r < m; ++r) {
+                int agree = 0;
+                for (int k = 0; k < m; ++k) agree += by_cycle[(k + r) % m] == targets[k];
+                if (agree > best_agree) best_agree = agree, shift = r;
+            }
+        }
+        for (int k = 0; k < m; ++k) around[slots[k]].second = by_cycle[(k + shift) % m];
     }
 
     int index_in_rotation(int u, int v) const {
@@ -480,6 +515,8 @@ private:
     std::vector<char> reached_;
     std::vector<std::vector<int>> rotation_;
     std::vector<std::pair<double, int>> scratch_angles_;
+    std::vector<int> scratch_slots_;
+    std::vector<int> scratch_targets_;
     std::vector<int> offset_;
     std::vector<char> used_;
     std::vector<int> polygon_;
