@@ -506,8 +506,11 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
         ++looked;
         if (windows_[s].state != k_pending || s == id) continue;
         const Window& other = windows_[s];
-        if (other.origin != w.origin || std::abs(other.sigma - w.sigma) > source_tolerance ||
-            (other.source() - w.source()).norm() > source_tolerance)
+        if (other.origin != w.origin || std::abs(other.sigma - w.sigma) > source_tolerance) continue;
+        // Most windows of one origin are other unfoldings of it, far apart: a square root is spared for those.
+        const Vec2 apart = other.source() - w.source();
+        if (std::max(std::abs(apart.x()), std::abs(apart.y())) > 2.0 * source_tolerance ||
+            apart.norm() > source_tolerance)
             continue;
         if (other.b0 > b1 + gap_tolerance || other.b1 < b0 - gap_tolerance) continue;
         windows_[s].state = k_merged;
@@ -582,7 +585,7 @@ void ExactGeodesic::Impl::propagate_window(int popped) {
 
     if (w.b0 < x_apex) {  // child on the edge tail→apex, seen from the neighbour across it
         const int child = mesh_.twin(Mesh::prev(h));
-        const double apex_norm = apex.norm();
+        const double apex_norm = mesh_.length(Mesh::prev(h));  // the length of apex, and of child, which ends there
         if (child >= 0 && apex_norm > 0.0) {
             const Vec2 e = apex / apex_norm;
             const double hi = std::min(w.b1, x_apex);
@@ -590,15 +593,13 @@ void ExactGeodesic::Impl::propagate_window(int popped) {
             double u1 = hi == x_apex ? apex_norm : detail::line_crossing(source, Vec2(hi, 0.0), Vec2::Zero(), e);
             if (!std::isfinite(u0)) u0 = 0.0;
             if (!std::isfinite(u1)) u1 = apex_norm;
-            const double scale = mesh_.length(child) / apex_norm;
-            add_window(child, u0 * scale, u1 * scale, detail::to_frame(source, Vec2::Zero(), e), w.sigma, id,
-                       w.origin);
+            add_window(child, u0, u1, detail::to_frame(source, Vec2::Zero(), e), w.sigma, id, w.origin);
         }
     }
     if (x_apex < w.b1) {  // child on the edge apex→head
         const int child = mesh_.twin(Mesh::next(h));
         const Vec2 along = head - apex;
-        const double along_norm = along.norm();
+        const double along_norm = mesh_.length(Mesh::next(h));
         if (child >= 0 && along_norm > 0.0) {
             const Vec2 e = along / along_norm;
             const double lo = std::max(w.b0, x_apex);
@@ -606,8 +607,7 @@ void ExactGeodesic::Impl::propagate_window(int popped) {
             double v1 = w.b1 == length ? along_norm : detail::line_crossing(source, Vec2(w.b1, 0.0), apex, e);
             if (!std::isfinite(v0)) v0 = 0.0;
             if (!std::isfinite(v1)) v1 = along_norm;
-            const double scale = mesh_.length(child) / along_norm;
-            add_window(child, v0 * scale, v1 * scale, detail::to_frame(source, apex, e), w.sigma, id, w.origin);
+            add_window(child, v0, v1, detail::to_frame(source, apex, e), w.sigma, id, w.origin);
         }
     }
 }
