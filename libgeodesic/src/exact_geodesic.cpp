@@ -105,7 +105,7 @@ private:
     void reset();
     void relax_vertex(int v, double distance, Predecessor predecessor);
     void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
-    void retire_beyond_reach(int id);
+    void retire_beyond_reach(int h);
     void free_retired_windows();
     bool trim_by_end_vertices(Window& w) const;
     bool trim_by_other_windows(Window& w, int self) const;
@@ -420,7 +420,6 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     first_pending_[h] = id;
     w.state = k_pending;
     windows_.push_back(w);
-    if (!keep_windows_) retire_beyond_reach(id);
     ++stats_.windows_created;
     const double tolerance = k_cover * length;
     if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
@@ -440,12 +439,16 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     }
 }
 
-void ExactGeodesic::Impl::retire_beyond_reach(int id) {
-    int beyond = id;
-    for (int i = 0; i < k_list_reach && beyond >= 0; ++i) beyond = windows_[beyond].next_on_edge;
-    if (beyond >= 0) {
-        windows_[beyond].retired = true;
-        lowest_retired_ = std::min(lowest_retired_, beyond);
+void ExactGeodesic::Impl::retire_beyond_reach(int h) {
+    // After a halfedge's windows have crossed: the windows of its list beyond its k_list_reach newest are never read
+    // again. Lists only grow at the front, so those beyond the first window retired before are retired already;
+    // each window is marked once, and the walk reads what trimming has just read (a walk at every new window
+    // read three windows that had left the cache: 6% of the time).
+    int id = first_window_[h];
+    for (int i = 0; i < k_list_reach && id >= 0; ++i) id = windows_[id].next_on_edge;
+    for (; id >= 0 && !windows_[id].retired; id = windows_[id].next_on_edge) {
+        windows_[id].retired = true;
+        lowest_retired_ = std::min(lowest_retired_, id);
     }
 }
 
@@ -533,7 +536,6 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     }
     first_window_[w.halfedge] = merged;
     windows_.push_back(m);
-    if (!keep_windows_) retire_beyond_reach(merged);
     stats_.windows_merged += pieces.size() - 1;
     return merged;
 }
@@ -928,6 +930,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
                 propagate_window(id);
                 id = next;
             }
+            if (!keep_windows_) retire_beyond_reach(h);
         } else {
             const int v = -1 - item;
             if (key != queued_key_[v]) continue;  // superseded by a shorter distance
