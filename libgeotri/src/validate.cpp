@@ -4,6 +4,7 @@
 #include <geotri/tangent_angles.h>
 #include <geotri/validate.h>
 
+#include "crossing_items.h"
 #include "local_checks.h"
 #include "plane_segments.h"
 #include "polyline_verdicts.h"
@@ -22,53 +23,14 @@ namespace geotri {
 using geodesic::Mesh;
 using geodesic::PointKind;
 
-namespace detail {
-
-/// A point that takes part in condition 3: point `index` of the polyline of coarse edge `feature` (feature < number
-/// of edges), or the location of coarse vertex `feature - number of edges` (index 0).
-struct Item {
-    int feature;
-    int index;
-};
-
-struct EdgePoint {
-    int key;
-    double t;
-    Item item;
-};
-
-struct EdgeInterval {
-    int key;
-    double t0, t1;
-    int feature;
-    int segment;
-};
-
-struct FaceSegment {
-    int face;
-    Item end[2];
-    Eigen::Vector2d x[2];
-    int segment;  ///< -1 for a coarse vertex (a single point)
-};
-
-/// A polyline's part in condition 3: its points and segments, each with the fine vertex, edge or face that holds
-/// it, as Validator::check_crossings() sorts them. Their coarse edge (feature) is 0, set where they are used: an
-/// unchanged polyline may belong to an edge of another index in a changed copy of G.
-struct CrossingItems {
-    std::vector<std::pair<int, Item>> vertex_items;  ///< a fine vertex, and a point on it
-    std::vector<EdgePoint> edge_points;
-    std::vector<EdgeInterval> edge_intervals;
-    std::vector<FaceSegment> face_segments;
-};
-
-}  // namespace detail
-
 using detail::CrossingItems;
 using detail::EdgeInterval;
 using detail::EdgePoint;
 using detail::FaceSegment;
 using detail::Item;
+using detail::k_meet_tolerance;
 using detail::point_segment_distance;
+using detail::polyline_crossing_items;
 using detail::segment_distance;
 
 namespace {
@@ -76,7 +38,6 @@ namespace {
 constexpr double k_pi = 3.14159265358979323846;
 constexpr double k_length_tolerance = 1e-12;    // relative
 constexpr double k_min_corner = 1e-12;          // rad
-constexpr double k_meet_tolerance = 1e-12;      // × the local fine edge length
 constexpr double k_area_tolerance = 1e-9;       // relative
 
 std::string degrees(double radians) {
@@ -112,7 +73,20 @@ void add_point(const Mesh& mesh, const SurfacePoint& p, const Item& item, Crossi
     }
 }
 
-/// The condition-3 items of a polyline in canonical form whose points are apart and pairwise on a common face.
+/// Empty when the consecutive points of `path` are apart and share a fine face, else the first pair that does not.
+std::string points_defect(const Mesh& mesh, const Polyline& path) {
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+        if (path[i] == path[i + 1]) return "repeats point " + std::to_string(i);
+        if (common_face(mesh, path[i], path[i + 1]) < 0)
+            return "has points " + std::to_string(i) + " and " + std::to_string(i + 1) + " on no common fine face";
+    }
+    return {};
+}
+
+}  // namespace
+
+namespace detail {
+
 CrossingItems polyline_crossing_items(const Mesh& mesh, const Polyline& path) {
     CrossingItems out;
     const int n = static_cast<int>(path.size());
@@ -138,15 +112,52 @@ CrossingItems polyline_crossing_items(const Mesh& mesh, const Polyline& path) {
     return out;
 }
 
-/// Empty when the consecutive points of `path` are apart and share a fine face, else the first pair that does not.
-std::string points_defect(const Mesh& mesh, const Polyline& path) {
-    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
-        if (path[i] == path[i + 1]) return "repeats point " + std::to_string(i);
-        if (common_face(mesh, path[i], path[i + 1]) < 0)
-            return "has points " + std::to_string(i) + " and " + std::to_string(i + 1) + " on no common fine face";
+CrossingItems location_crossing_items(const Mesh& mesh, const SurfacePoint& location) {
+    CrossingItems out;
+    const Item item{0, 0};
+    if (location.kind == PointKind::face) {
+        const Eigen::Vector2d x = halfedge_coordinates(mesh, 3 * location.face, location);
+        out.face_segments.push_back({location.face, {item, item}, {x, x}, -1});
+    } else {
+        add_point(mesh, location, item, out);
     }
-    return {};
+    return out;
 }
+
+std::string polyline_violation(const Mesh& mesh, const Polyline& path, int from, const SurfacePoint& from_location,
+                               int to, const SurfacePoint& to_location, const std::string* known,
+                               double recorded_length, bool& usable) {
+    usable = false;
+    if (path.size() < 2) return path.empty() ? "has no polyline" : "has a polyline of one point";
+    if (path.front() != from_location) return "does not start at the location of coarse vertex " + std::to_string(from);
+    if (path.back() != to_location) return "does not end at the location of coarse vertex " + std::to_string(to);
+    // A known verdict is only kept for a polyline whose points are apart and pairwise on a common fine face.
+    if (!known) {
+        std::string apart = points_defect(mesh, path);
+        if (!apart.empty()) return apart;
+    }
+    usable = true;
+    return known ? *known : shape_defect(mesh, path, recorded_length);
+}
+
+VertexCorners vertex_corners(const Mesh& mesh, const SurfacePoint& location, const std::vector<double>& polar_angles) {
+    VertexCorners out;
+    out.theta = cone_angle(mesh, location);
+    const std::size_t n = polar_angles.size();
+    out.corners.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double corner = ccw_angle(polar_angles[i], polar_angles[(i + 1) % n], out.theta);
+        out.corners.push_back(corner);
+        out.sum += corner;
+        if (corner <= k_min_corner && out.first_bad < 0) out.first_bad = static_cast<int>(i);
+    }
+    out.winding = std::lround(out.sum / out.theta);
+    return out;
+}
+
+}  // namespace detail
+
+namespace {
 
 class Validator {
 public:
@@ -263,41 +274,20 @@ void Validator::check_geodesics() {
 }
 
 void Validator::check_polyline(int e) {
-    const Polyline& path = paths_[e];
-    auto fail = [&](const std::string& why) {
-        Violation v;
-        v.condition = 1;
-        v.what = edge_name(e) + " " + why;
-        v.coarse_edges = {e};
-        v.coarse_vertices = {ends_[e][0], ends_[e][1]};
-        add(std::move(v));
-    };
-    if (path.size() < 2) {
-        fail(path.empty() ? "has no polyline" : "has a polyline of one point");
-        return;
-    }
-    if (path.front() != locations_[ends_[e][0]]) {
-        fail("does not start at the location of coarse vertex " + std::to_string(ends_[e][0]));
-        return;
-    }
-    if (path.back() != locations_[ends_[e][1]]) {
-        fail("does not end at the location of coarse vertex " + std::to_string(ends_[e][1]));
-        return;
-    }
-    // A known verdict is only kept for a polyline whose points are apart and pairwise on a common fine face.
     const OpenMesh::EdgeHandle handle(e);
     const std::string* known = known_ ? known_->find(g_, handle) : nullptr;
-    if (!known) {
-        const std::string apart = points_defect(mesh_, path);
-        if (!apart.empty()) {
-            fail(apart);
-            return;
-        }
-    }
-    path_ok_[e] = 1;
-
-    const std::string defect = known ? *known : detail::shape_defect(mesh_, path, g_.length(handle));
-    if (!defect.empty()) fail(defect);
+    bool usable = false;
+    const auto [from, to] = ends_[e];
+    const std::string why = detail::polyline_violation(mesh_, paths_[e], from, locations_[from], to, locations_[to],
+                                                       known, g_.length(handle), usable);
+    path_ok_[e] = usable ? 1 : 0;
+    if (why.empty()) return;
+    Violation v;
+    v.condition = 1;
+    v.what = edge_name(e) + " " + why;
+    v.coarse_edges = {e};
+    v.coarse_vertices = {ends_[e][0], ends_[e][1]};
+    add(std::move(v));
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -327,18 +317,13 @@ void Validator::check_corners() {
         } while (h != start && out.size() <= coarse_.n_halfedges());
         if (!measurable || out.empty()) continue;  // condition 1 already names the broken polyline
 
-        const double theta = cone_angle(mesh_, locations_[c.idx()]);
+        const detail::VertexCorners corners = detail::vertex_corners(mesh_, locations_[c.idx()], angle);
+        corner_angles_.insert(corner_angles_.end(), corners.corners.begin(), corners.corners.end());
+        if (!corners.violated()) continue;
         const std::size_t n = out.size();
-        double sum = 0.0;
-        int first_bad = -1;
-        for (std::size_t i = 0; i < n; ++i) {
-            const double corner = ccw_angle(angle[i], angle[(i + 1) % n], theta);
-            corner_angles_.push_back(corner);
-            sum += corner;
-            if (corner <= k_min_corner && first_bad < 0) first_bad = static_cast<int>(i);
-        }
-        const long winding = std::lround(sum / theta);
-        if (first_bad < 0 && winding == 1) continue;
+        const double theta = corners.theta, sum = corners.sum;
+        const int first_bad = corners.first_bad;
+        const long winding = corners.winding;
 
         Violation v;
         v.condition = 2;
@@ -410,13 +395,16 @@ void Validator::check_crossings() {
         }
     }
     for (auto c : coarse_.vertices()) {
-        const Item item{ne + c.idx(), 0};
-        const SurfacePoint& p = locations_[c.idx()];
-        if (p.kind == PointKind::face) {
-            const Eigen::Vector2d x = halfedge_coordinates(mesh_, 3 * p.face, p);
-            items_.face_segments.push_back({p.face, {item, item}, {x, x}, -1});
-        } else {
-            add_point(mesh_, p, item, items_);
+        const int feature = ne + c.idx();
+        CrossingItems own = detail::location_crossing_items(mesh_, locations_[c.idx()]);
+        for (auto [vertex, item] : own.vertex_items) items_.vertex_items.emplace_back(vertex, Item{feature, 0});
+        for (EdgePoint p : own.edge_points) {
+            p.item.feature = feature;
+            items_.edge_points.push_back(p);
+        }
+        for (FaceSegment s : own.face_segments) {
+            s.end[0].feature = s.end[1].feature = feature;
+            items_.face_segments.push_back(s);
         }
     }
 
