@@ -30,6 +30,8 @@ public:
     /// The polyline of g's edge e with its points in canonical form, when its verdict is known here (as find());
     /// else null. Validation needs the canonical points of every polyline for condition 3.
     const Polyline* canonical(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
+    /// The same, shared, for a holder that may outlive these verdicts.
+    std::shared_ptr<const Polyline> shared_canonical(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
     /// The points and segments of g's edge e, each with the fine element that holds it, as condition 3 sorts them,
     /// when its verdict is known here (as find()); else null.
     const CrossingItems* crossing_items(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;

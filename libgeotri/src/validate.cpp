@@ -703,6 +703,12 @@ const Polyline* PolylineVerdicts::canonical(const GeodesicTriangulation& g, Open
     return known ? known->canonical.get() : nullptr;
 }
 
+std::shared_ptr<const Polyline> PolylineVerdicts::shared_canonical(const GeodesicTriangulation& g,
+                                                                   OpenMesh::EdgeHandle e) const {
+    const Verdict* known = verdict(g, e);
+    return known ? known->canonical : nullptr;
+}
+
 const CrossingItems* PolylineVerdicts::crossing_items(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const {
     const Verdict* known = verdict(g, e);
     return known ? known->crossings.get() : nullptr;

@@ -1,0 +1,239 @@
+// Untangling's judge (libgeotri/src/violation_count.h): the violations of conditions 1-3 of a trial copy of G,
+// counted from what the trial changed, against validate() on the whole copy. Random operations of every kind that
+// untangling tries, and hand-made changes that break the conditions in other ways (polylines reversed, erased or
+// moved to another edge, vertices moved without their edges, two vertices at one point), on G that random walks
+// tangle further, over procedural meshes and a bundled real mesh.
+
+#include <geodesic/errors.h>
+#include <geodesic/exact_geodesic.h>
+#include <geotri/collapse.h>
+#include <geotri/fine_mesh.h>
+#include <geotri/flip.h>
+#include <geotri/relocate.h>
+#include <geotri/split.h>
+#include <geotri/trace.h>
+#include <geotri/validate.h>
+#include <geotri_test/fine_mesh.h>
+#include <geotri_test/g_checks.h>
+#include <geotri_test/procedural_meshes.h>
+
+#include "polyline_verdicts.h"  // libgeotri/src: untangling's verdicts kept between validations
+#include "violation_count.h"    // libgeotri/src: untangling's count of violations from what a trial changed
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace geotri {
+namespace {
+
+using geodesic::SurfacePoint;
+using OpenMesh::EdgeHandle;
+using OpenMesh::HalfedgeHandle;
+using OpenMesh::VertexHandle;
+using test::decimated_coarse;
+using test::fine_of;
+
+/// Violations of conditions 1-3, as validate() without the overlay names them: the oracle.
+int validated(const GeodesicTriangulation& g) {
+    const ValidationReport r = validate(g, ValidationOptions{false});
+    return r.violation_count[0] + r.violation_count[1] + r.violation_count[2];
+}
+
+int uniform(std::mt19937& random, int n) { return std::uniform_int_distribution<int>(0, n - 1)(random); }
+
+/// A random fine vertex near v's location: one of nearby_fine_vertices(), else any.
+int nearby_vertex(const GeodesicTriangulation& g, VertexHandle v, std::mt19937& random) {
+    const std::vector<int> near = nearby_fine_vertices(g, v, 2);
+    if (!near.empty()) return near[static_cast<std::size_t>(uniform(random, static_cast<int>(near.size())))];
+    return uniform(random, g.fine().mesh.num_vertices());
+}
+
+/// One random change of g, of the kinds that untangling makes or of kinds that break G otherwise; returns its
+/// name, or "" when it was not possible there.
+std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodesic::ExactGeodesic& propagation) {
+    CoarseMesh& coarse = g.coarse();
+    const EdgeHandle e(uniform(random, static_cast<int>(coarse.n_edges())));
+    const VertexHandle v(uniform(random, static_cast<int>(coarse.n_vertices())));
+    try {
+        switch (uniform(random, 12)) {
+        case 0:
+        case 1: {
+            FlipOptions unchecked;
+            unchecked.check_validity = false;
+            unchecked.propagation = &propagation;
+            return flip(g, e, unchecked).accepted() ? "flip" : "";
+        }
+        case 2: {
+            const std::vector<Fork> forks = find_forks(g, v);
+            if (forks.empty()) return "";
+            SplitOptions options;
+            options.propagation = &propagation;
+            return split_fork(g, forks.front(), options).done ? "fork split" : "";
+        }
+        case 3: {
+            CollapseOptions unchecked;
+            unchecked.check_validity = false;
+            unchecked.propagation = &propagation;
+            return collapse_edge(g, coarse.halfedge_handle(e, uniform(random, 2)), unchecked).done ? "collapse" : "";
+        }
+        case 4: {
+            RelocateOptions unchecked;
+            unchecked.check_validity = false;
+            unchecked.propagation = &propagation;
+            return relocate_vertex(g, v, SurfacePoint::at_vertex(nearby_vertex(g, v, random)), unchecked).done
+                       ? "move"
+                       : "";
+        }
+        case 5: {
+            // Into a fine face, whose edges then cross the faces around it.
+            RelocateOptions unchecked;
+            unchecked.check_validity = false;
+            unchecked.propagation = &propagation;
+            const int f = uniform(random, g.fine().mesh.num_faces());
+            return relocate_vertex(g, v, SurfacePoint::in_face(f, {0.2, 0.3, 0.5}), unchecked).done ? "move into a face"
+                                                                                                   : "";
+        }
+        case 6: {
+            // Its edges stay where they were: condition 1 names them, and they drop out of conditions 2 and 3.
+            g.set_location(v, SurfacePoint::at_vertex(nearby_vertex(g, v, random)));
+            return "location moved";
+        }
+        case 7: {
+            const VertexHandle w(uniform(random, static_cast<int>(coarse.n_vertices())));
+            g.set_location(v, g.location(w));
+            return "two vertices at one point";
+        }
+        case 8: {
+            // On a fine edge, a hair (1e-13 of it, within validate()'s tolerance) from another vertex's location
+            // (a fine vertex here), or from a fine vertex.
+            const VertexHandle w(uniform(random, static_cast<int>(coarse.n_vertices())));
+            const geodesic::Mesh& mesh = g.fine().mesh;
+            const int a = g.location(w).kind == geodesic::PointKind::vertex ? g.location(w).vertex
+                                                                            : uniform(random, mesh.num_vertices());
+            const int b = mesh.head(mesh.outgoing(a));
+            g.set_location(v, SurfacePoint::on_edge(a, b, uniform(random, 2) == 0 ? 1e-13 : 0.0));
+            return "a hair from another vertex";
+        }
+        case 9: {
+            // There, back and there again: it meets itself all along (and is not straight).
+            const Polyline& path = g.polyline(e);
+            if (path.size() < 2) return "";
+            Polyline doubled = path;
+            doubled.insert(doubled.end(), path.rbegin() + 1, path.rend());
+            doubled.insert(doubled.end(), path.begin() + 1, path.end());
+            g.set_polyline(e, doubled);
+            return "polyline doubled back";
+        }
+        case 10: {
+            Polyline reversed = g.polyline(e);
+            std::reverse(reversed.begin(), reversed.end());
+            g.set_polyline(e, reversed);
+            return "polyline reversed";
+        }
+        default: {
+            if (uniform(random, 2) == 0) {
+                g.set_polyline(e, {});
+                return "polyline erased";
+            }
+            g.set_polyline(e, g.polyline(EdgeHandle(uniform(random, static_cast<int>(coarse.n_edges())))));
+            return "another edge's polyline";
+        }
+        }
+    } catch (const InvalidInput&) {
+        return "";  // as untangling: G unfit for the operation around there
+    }
+}
+
+/// `trials` trial copies of g, each changed by one to three random changes, counted from what changed and by
+/// validate(). One trial in `keep_every` becomes G (whatever its count), so that G wanders and tangles, and the
+/// count is made again from it. Returns the number of trials whose count went down, for the caller to see that
+/// both ways were exercised.
+int check_random_trials(GeodesicTriangulation g, int trials, int keep_every, unsigned seed, const std::string& name) {
+    std::mt19937 random(seed);
+    geodesic::ExactGeodesic propagation(g.fine().mesh);
+    detail::PolylineVerdicts verdicts(g, {});
+    detail::ViolationCount count(g, verdicts);
+    int g_count = validated(g);
+    EXPECT_EQ(count.count(), g_count) << name;
+    int lower = 0, higher = 0, kept = 0;
+    for (int k = 0; k < trials; ++k) {
+        GeodesicTriangulation trial = g;
+        std::string changes;
+        const int n = 1 + uniform(random, 3);
+        for (int i = 0; i < n; ++i) {
+            const std::string change = random_change(trial, random, propagation);
+            if (!change.empty()) changes += (changes.empty() ? "" : ", ") + change;
+        }
+        const int expected = validated(trial);
+        const int counted = count.count(trial, verdicts);
+        EXPECT_EQ(counted, expected) << name << ", trial " << k << " (" << changes << "): G has " << g_count;
+        if (counted != expected) return lower;  // one failure tells it; what follows would only repeat it
+        (expected < g_count ? lower : higher) += 1;
+        if (uniform(random, keep_every) == 0) {
+            g = trial;
+            verdicts = detail::PolylineVerdicts(g, verdicts);
+            count = detail::ViolationCount(g, verdicts);
+            g_count = expected;
+            EXPECT_EQ(count.count(), g_count) << name << ", kept trial " << k;
+            ++kept;
+        }
+    }
+    std::cout << "[ count    ] " << name << ": " << trials << " trials (" << lower << " lower, " << higher
+              << " not), " << kept << " kept; G ends with " << g.coarse().n_faces() << " faces and " << g_count
+              << " violations\n";
+    EXPECT_GT(higher, 0) << name;
+    return lower;
+}
+
+TEST(ViolationCount, trials_on_a_perturbed_sphere_count_as_validate) {
+    const auto fine = fine_of(test::perturbed_sphere(10, 0.05, 7));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, 40));
+    trace(g);
+    EXPECT_GT(check_random_trials(g, 400, 8, 1, "perturbed sphere"), 0);
+}
+
+TEST(ViolationCount, trials_on_a_torus_count_as_validate) {
+    // Genus 1: geodesics that wind around the handle, vertices whose edges wind more than once.
+    const auto fine = fine_of(test::torus(1.0, 0.35, 48, 18));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, 60));
+    trace(g);
+    EXPECT_GT(check_random_trials(g, 400, 8, 2, "torus"), 0);
+}
+
+TEST(ViolationCount, trials_on_a_tangled_real_mesh_count_as_validate) {
+    // cad/anchor at 320 faces: trace leaves forks and crossings that untangling starts from.
+    const auto fine =
+        std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off"));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, 320));
+    trace(g);
+    EXPECT_GT(validated(g), 0);
+    EXPECT_GT(check_random_trials(g, 300, 10, 3, "anchor"), 0);
+}
+
+TEST(ViolationCount, an_unchanged_copy_counts_as_g) {
+    const auto fine = fine_of(test::perturbed_sphere(8, 0.05, 3));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, 30));
+    trace(g);
+    // Tangled by hand: two polylines swapped, one vertex on another.
+    const Polyline first = g.polyline(EdgeHandle(0));
+    g.set_polyline(EdgeHandle(0), g.polyline(EdgeHandle(1)));
+    g.set_polyline(EdgeHandle(1), first);
+    g.set_location(VertexHandle(0), g.location(VertexHandle(5)));
+    const detail::PolylineVerdicts verdicts(g, {});
+    const detail::ViolationCount count(g, verdicts);
+    EXPECT_GT(validated(g), 0);
+    EXPECT_EQ(count.count(), validated(g));
+    const GeodesicTriangulation copy = g;
+    EXPECT_EQ(count.count(copy, verdicts), validated(g));
+    EXPECT_EQ(count.count(copy, detail::PolylineVerdicts{}), validated(g));
+}
+
+}  // namespace
+}  // namespace geotri
