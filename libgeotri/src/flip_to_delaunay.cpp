@@ -8,6 +8,7 @@
 
 #include "parallel_propagations.h"
 #include "polyline_verdicts.h"
+#include "violation_count.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +19,8 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #ifdef _OPENMP
@@ -251,20 +254,36 @@ std::vector<int> candidate_vertices(const CoarseMesh& coarse, const ValidationRe
     return {vertices.begin(), vertices.end()};
 }
 
+/// Throws std::logic_error unless `counted`, the violations of conditions 1-3 of a G that ViolationCount found, are
+/// those of `report`, validate()'s on that G.
+void check_count(int counted, const ValidationReport& report, const char* what) {
+    if (counted != cheap_count(report))
+        throw std::logic_error(std::string("untangling: ") + what + ": " + std::to_string(counted) +
+                               " violations counted from what changed, " + std::to_string(cheap_count(report)) +
+                               " by validate()");
+}
+
 /// Untangling's judge: `trial` is better when it has fewer violations of conditions 1-3 than `report`, or none
-/// (as `report`) and fewer of condition 4. Conditions 1-3 are checked first, without the overlay, which costs most;
+/// (as `report`) and fewer of condition 4. Conditions 1-3 are counted first, without the overlay, which costs most,
+/// and from what trial changed (`count`, made from the G that trial was copied from, with its verdicts `known`);
 /// the overlay is built only for a trial without such violations. That is enough while there are some: an
 /// embedding of the coarse graph that keeps its rotation system (conditions 1-3) cuts T into disks by Euler's
-/// formula, so condition 4 fails alone only by rounding. `after` is trial's report, with condition 4 when it was
-/// built. `known` holds the verdicts on the polylines of the G that trial was copied from.
+/// formula, so condition 4 fails alone only by rounding. `cheap` is trial's count of conditions 1-3; `after` its
+/// report, with condition 4, when it was needed (no violations of conditions 1-3).
 bool lowers_violations(const GeodesicTriangulation& trial, const ValidationReport& report,
-                       const detail::PolylineVerdicts& known, ValidationReport& after) {
-    ValidationOptions cheap;
-    cheap.overlay = false;
-    after = detail::validate(trial, cheap, known);
-    if (cheap_count(after) > 0) return cheap_count(after) < cheap_count(report);
-    add_overlay_check(trial, after);
-    return cheap_count(report) > 0 || total(after) < total(report);
+                       const detail::PolylineVerdicts& known, const detail::ViolationCount& count, int& cheap,
+                       std::optional<ValidationReport>& after) {
+    ValidationOptions no_overlay;
+    no_overlay.overlay = false;
+    cheap = count.count(trial, known);
+#ifndef NDEBUG
+    check_count(cheap, detail::validate(trial, no_overlay, known), "a trial");
+#endif
+    if (cheap > 0) return cheap < cheap_count(report);
+    after = detail::validate(trial, no_overlay, known);
+    check_count(cheap, *after, "a trial without violations");
+    add_overlay_check(trial, *after);
+    return cheap_count(report) > 0 || total(*after) < total(report);
 }
 
 /// `report` without its condition 4, as validate() without the overlay gives it: while conditions 1-3 fail,
@@ -294,6 +313,7 @@ public:
     Untangler(GeodesicTriangulation& g, ValidationReport& report, const FlipToDelaunayOptions& options,
               FlipToDelaunayResult& result)
         : g_(g), report_(report), result_(result), verdicts_(g, {}) {
+        recount();
 #ifdef _OPENMP
         threads_ = options.threads > 0 ? options.threads : omp_get_max_threads();
 #else
@@ -312,7 +332,8 @@ public:
         std::stable_partition(moves.begin(), moves.end(), [&](const Move& m) { return !failed_.count(m.key); });
         struct Trial {
             std::optional<GeodesicTriangulation> g;
-            ValidationReport report;
+            std::optional<ValidationReport> report;
+            int cheap = 0;  ///< violations of conditions 1-3
             int operations = 0;
             bool better = false;
             std::exception_ptr error;
@@ -332,7 +353,8 @@ public:
                     } catch (const InvalidInput&) {
                         t.operations = 0;
                     }
-                    t.better = t.operations > 0 && lowers_violations(*t.g, report_, verdicts_, t.report);
+                    t.better = t.operations > 0 &&
+                               lowers_violations(*t.g, report_, verdicts_, *count_, t.cheap, t.report);
                 } catch (...) {
                     t.error = std::current_exception();
                 }
@@ -341,9 +363,16 @@ public:
                 Trial& t = trials[i];
                 if (t.error) std::rethrow_exception(t.error);
                 if (t.better) {
+                    if (!t.report) {
+                        ValidationOptions no_overlay;
+                        no_overlay.overlay = false;
+                        t.report = detail::validate(*t.g, no_overlay, verdicts_);
+                        check_count(t.cheap, *t.report, "a kept trial");
+                    }
                     g_ = std::move(*t.g);
-                    report_ = std::move(t.report);
+                    report_ = std::move(*t.report);
                     verdicts_ = detail::PolylineVerdicts(g_, verdicts_);
+                    recount();
                     kept += t.operations;
                     // A collapse renumbers the coarse vertices, and with them the keys.
                     if (moves[first + i].key[0] == k_collapse) failed_.clear();
@@ -357,6 +386,12 @@ public:
     }
 
 private:
+    /// Keeps what it takes to count the violations of trial copies of G from what they change.
+    void recount() {
+        count_.emplace(g_, verdicts_);
+        check_count(count_->count(), report_, "G");
+    }
+
     /// The calling thread's propagation object, made on first use.
     geodesic::ExactGeodesic& propagation() {
         std::size_t k = 0;
@@ -374,6 +409,7 @@ private:
     std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread
     std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
     detail::PolylineVerdicts verdicts_;    ///< condition 1 on G's polylines, for judging the trials
+    std::optional<detail::ViolationCount> count_;  ///< G's violations of conditions 1-3, to count the trials'
 };
 
 /// Untangles by single flips, where no flip helps by fork splits, then by edge collapses, then by moving vertices,
