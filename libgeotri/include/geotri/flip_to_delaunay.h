@@ -95,7 +95,8 @@ struct FlipToDelaunayResult {
 /// validate() with the overlay; if that fails, G goes back to what it was before improving). Deterministic:
 /// improve evaluates edges in parallel but flips in edge index order, and untangle keeps the first helpful trial in
 /// order, so the result is the same for any thread count. Preconditions: every edge traced. Throws InvalidInput for
-/// a malformed G.
+/// a malformed G, and std::logic_error where untangling's count of a trial's violations, made from what the trial
+/// changed, is not validate()'s (a broken invariant: it is checked on every trial that untangling keeps).
 FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDelaunayOptions& options = {});
 
 /// Improve only, starting from `edges` and going on with the edges that their flips change, on a G that the caller
