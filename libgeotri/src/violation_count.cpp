@@ -91,7 +91,7 @@ struct Buckets {
     }
 };
 
-/// The items of `items` in `sorted` (sorted by `key`) whose key is `value`.
+/// The items of `sorted` (sorted by `key`) whose key is `value`.
 template <class T, class Key>
 std::pair<typename std::vector<T>::const_iterator, typename std::vector<T>::const_iterator> group(
     const std::vector<T>& sorted, int value, Key key) {
@@ -101,9 +101,9 @@ std::pair<typename std::vector<T>::const_iterator, typename std::vector<T>::cons
     return {first, last};
 }
 
-auto vertex_of = [](const auto& x) { return x.vertex; };
-auto key_of = [](const auto& x) { return x.key; };
-auto face_of = [](const auto& x) { return x.face; };
+const auto vertex_of = [](const auto& x) { return x.vertex; };
+const auto key_of = [](const auto& x) { return x.key; };
+const auto face_of = [](const auto& x) { return x.face; };
 
 /// The points on fine edge `key` from parameter `t` on, in `sorted` (by key, then t).
 std::vector<OnEdge>::const_iterator edge_points_from(const std::vector<OnEdge>& sorted, int key, double t) {
