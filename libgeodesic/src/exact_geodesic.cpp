@@ -412,7 +412,8 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     if (max_distance_ < k_infinity && w.lower_bound() > max_distance_) return;  // a square root saved otherwise
     // A window is trimmed only when it is about to cross its face (propagate_window), once: by then the distances
     // of its end vertices and the windows it meets on its edge are nearer their last. Trimming when it was added
-    // as well kept a fifth fewer windows but cost more than it saved (the 100k icosphere 1.24 -> 0.86 s).
+    // as well gave up to 30% fewer windows but cost more than it saved (bench/README.md: the 100k icosphere 1.23 ->
+    // 0.82 s with the changes that came with it).
     const int id = static_cast<int>(windows_.size());
     if (w.next_on_edge < 0) touched_halfedges_.push_back(h);
     first_window_[h] = id;

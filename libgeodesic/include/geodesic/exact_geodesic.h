@@ -38,9 +38,9 @@ struct PropagationOptions {
 
 /// Counters of the last propagation, for benchmarks and tuning.
 struct PropagationStats {
-    std::size_t windows_created = 0;     ///< windows kept (each crosses its face once, unless pruned first)
+    std::size_t windows_created = 0;     ///< windows made (each crosses its face once, unless pruned first)
     std::size_t windows_propagated = 0;  ///< windows carried across a face
-    std::size_t windows_pruned = 0;      ///< windows dropped as dominated by a vertex
+    std::size_t windows_pruned = 0;      ///< windows dropped before crossing, as dominated by a vertex or window
     std::size_t windows_merged = 0;      ///< fragments of one ray family merged before crossing a face
     std::size_t windows_freed = 0;       ///< without keep_windows: windows freed while the propagation ran
     std::size_t vertex_emissions = 0;    ///< saddle, boundary or source vertices that emitted windows
