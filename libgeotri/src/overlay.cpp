@@ -243,12 +243,19 @@ private:
         return -1;
     }
 
-    /// Twice the signed area of (i, j, k); exactly 0 for three points on one side of the fine face.
+    /// Twice the signed area of (i, j, k); exactly 0 for three points on one side of the fine face. Three points
+    /// of the boundary of a face with area, not all on one side, turn counter-clockwise exactly when they come in
+    /// that order along the boundary cycle: that sign is taken, whatever rounding says of points an ulp apart.
     double orient(int i, int j, int k) const {
         if (nodes_[i].mask & nodes_[j].mask & nodes_[k].mask) return 0.0;
         const Eigen::Vector2d u = nodes_[j].pos - nodes_[i].pos;
         const Eigen::Vector2d v = nodes_[k].pos - nodes_[i].pos;
-        return u.x() * v.y() - u.y() * v.x();
+        const double area = u.x() * v.y() - u.y() * v.x();
+        const int a = nodes_[i].cycle, b = nodes_[j].cycle, c = nodes_[k].cycle;
+        if (a < 0 || b < 0 || c < 0 || !(corner_[2].y() > 0.0)) return area;
+        const bool counter_clockwise = (a < b && b < c) || (b < c && c < a) || (c < a && a < b);
+        const double magnitude = std::max(std::abs(area), std::numeric_limits<double>::denorm_min());
+        return counter_clockwise ? magnitude : -magnitude;
     }
 
     static int sign(double x) { return (x > 0.0) - (x < 0.0); }

@@ -18,6 +18,7 @@
 
 #include <Eigen/Geometry>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -386,6 +387,55 @@ TEST(Overlay, detour_crossing_at_cut_vertices_is_reported) {
     // Through the far corner (1,1,1), which lies in the patch of the opposite face.
     detour(g, where[0], where[1], SurfacePoint::at_vertex(extreme_vertex(mesh, Eigen::Vector3d(1, 1, 1))));
     expect_bad_patches_reported(build_overlay(g), mesh);
+}
+
+TEST(Overlay, geodesics_that_part_by_a_few_ulps_keep_every_fine_face_whole) {
+    // Edge a-c is given a copy of the geodesic of a-b that moves one of its points on a fine edge by an ulp or two,
+    // then runs on to c along b-c. From the point before it, two chords of one fine face go to nearly coincident
+    // points, which rounding can place against their order along the fine edge: the faces of the cut overlapped
+    // (one fine face of cheese's coarsest G was covered 1.33 times), and the sliver between the two chords was
+    // clipped into triangles turned the wrong way (edges without a twin). Every pair of coarse edges from one
+    // vertex, every point moved, 1 and 2 ulps either way.
+    auto fine = make_fine(test::icosphere(3), "icosphere");
+    const auto& mesh = fine->mesh;
+    const auto where = tetrahedron_vertices(mesh);
+    const GeodesicTriangulation valid = tetrahedron(fine, where);
+    const CoarseMesh& coarse = valid.coarse();
+    auto halfedge = [&](int from, int to) -> OpenMesh::HalfedgeHandle {
+        for (auto h : coarse.halfedges())
+            if (valid.location(coarse.from_vertex_handle(h)) == where[from] &&
+                valid.location(coarse.to_vertex_handle(h)) == where[to])
+                return h;
+        return OpenMesh::HalfedgeHandle();
+    };
+    int tried = 0;
+    for (int a = 0; a < 4; ++a) {
+        for (int b = 0; b < 4; ++b) {
+            int c = 0;
+            while (c == a || c == b) ++c;
+            if (b == a) continue;
+            const Polyline along_ab = valid.path(halfedge(a, b)), along_bc = valid.path(halfedge(b, c));
+            for (std::size_t i = 1; i + 1 < along_ab.size(); ++i) {
+                if (along_ab[i].kind != PointKind::edge) continue;
+                for (int ulps : {-2, -1, 1, 2}) {
+                    Polyline parted = along_ab;
+                    for (int n = 0; n < std::abs(ulps); ++n)
+                        parted[i].t = std::nextafter(parted[i].t, ulps > 0 ? 2.0 : -1.0);
+                    parted.insert(parted.end(), along_bc.begin() + 1, along_bc.end());
+                    GeodesicTriangulation g = valid;
+                    g.set_path(halfedge(a, c), parted);
+                    SCOPED_TRACE("edges " + std::to_string(a) + "-" + std::to_string(c) + ", " + std::to_string(a) +
+                                 "-" + std::to_string(b) + ", point " + std::to_string(i) + ", " +
+                                 std::to_string(ulps) + " ulps");
+                    const Overlay o = build_overlay(g);
+                    expect_watertight(o);
+                    expect_inside_fine_faces(o, mesh);
+                    ++tried;
+                }
+            }
+        }
+    }
+    EXPECT_GT(tried, 250);
 }
 
 TEST(Overlay, polyline_through_another_coarse_vertex_is_reported) {
