@@ -54,6 +54,14 @@ struct CrossingItems {
     std::vector<FaceSegment> face_segments;
 };
 
+/// Coarse vertex v's location in canonical form, as validation reads it. Throws InvalidInput("coarse vertex V:
+/// location: ...") when it does not refer to T.
+SurfacePoint canonical_location(const geodesic::Mesh& mesh, const SurfacePoint& location, int v);
+
+/// The polyline `raw` of coarse edge e with its points in canonical form, as validation reads it. Throws
+/// InvalidInput("coarse edge E: point I: ...") for a point that does not refer to T.
+Polyline canonical_polyline(const geodesic::Mesh& mesh, const Polyline& raw, int e);
+
 /// The condition-3 items of a polyline in canonical form whose points are apart and pairwise on a common face.
 CrossingItems polyline_crossing_items(const geodesic::Mesh& mesh, const Polyline& path);
 

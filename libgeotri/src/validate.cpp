@@ -87,6 +87,27 @@ std::string points_defect(const Mesh& mesh, const Polyline& path) {
 
 namespace detail {
 
+SurfacePoint canonical_location(const Mesh& mesh, const SurfacePoint& location, int v) {
+    try {
+        return mesh.canonical(location);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput("coarse vertex " + std::to_string(v) + ": location: " + e.what());
+    }
+}
+
+Polyline canonical_polyline(const Mesh& mesh, const Polyline& raw, int e) {
+    Polyline path;
+    path.reserve(raw.size());
+    for (std::size_t i = 0; i < raw.size(); ++i) {
+        try {
+            path.push_back(mesh.canonical(raw[i]));
+        } catch (const InvalidInput& ex) {
+            throw InvalidInput("coarse edge " + std::to_string(e) + ": point " + std::to_string(i) + ": " + ex.what());
+        }
+    }
+    return path;
+}
+
 CrossingItems polyline_crossing_items(const Mesh& mesh, const Polyline& path) {
     CrossingItems out;
     const int n = static_cast<int>(path.size());
@@ -235,34 +256,15 @@ void Validator::add_patches() {
 
 void Validator::prepare() {
     locations_.assign(coarse_.n_vertices(), SurfacePoint::at_vertex(-1));
-    for (auto v : coarse_.vertices()) {
-        try {
-            locations_[v.idx()] = mesh_.canonical(g_.location(v));
-        } catch (const InvalidInput& e) {
-            throw InvalidInput("coarse vertex " + std::to_string(v.idx()) + ": location: " + e.what());
-        }
-    }
+    for (auto v : coarse_.vertices()) locations_[v.idx()] = detail::canonical_location(mesh_, g_.location(v), v.idx());
     paths_.assign(coarse_.n_edges(), Polyline{});
     ends_.assign(coarse_.n_edges(), {-1, -1});
     path_ok_.assign(coarse_.n_edges(), 0);
     for (auto e : coarse_.edges()) {
         const auto h = coarse_.halfedge_handle(e, 0);
         ends_[e.idx()] = {coarse_.from_vertex_handle(h).idx(), coarse_.to_vertex_handle(h).idx()};
-        Polyline& path = paths_[e.idx()];
-        if (const Polyline* known = known_ ? known_->canonical(g_, e) : nullptr) {
-            path = *known;  // canonicalised when its verdict was found
-            continue;
-        }
-        const Polyline& raw = g_.polyline(e);
-        path.reserve(raw.size());
-        for (std::size_t i = 0; i < raw.size(); ++i) {
-            try {
-                path.push_back(mesh_.canonical(raw[i]));
-            } catch (const InvalidInput& ex) {
-                throw InvalidInput("coarse edge " + std::to_string(e.idx()) + ": point " + std::to_string(i) +
-                                   ": " + ex.what());
-            }
-        }
+        const Polyline* known = known_ ? known_->canonical(g_, e) : nullptr;  // canonicalised with its verdict
+        paths_[e.idx()] = known ? *known : detail::canonical_polyline(mesh_, g_.polyline(e), e.idx());
     }
 }
 

@@ -365,13 +365,7 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
             if (old.present == s.present && (!s.present || old.raw == s.raw)) continue;
             gone(vertex_feature(v));
         }
-        if (s.present) {
-            try {
-                s.canonical = mesh.canonical(s.raw);
-            } catch (const InvalidInput& e) {
-                throw InvalidInput("coarse vertex " + std::to_string(v) + ": location: " + e.what());
-            }
-        }
+        if (s.present) s.canonical = canonical_location(mesh, s.raw, v);
         d.vertex_slot[static_cast<std::size_t>(v)] = static_cast<int>(d.vertices.size());
         d.vertices.push_back(s);
     }
@@ -406,19 +400,7 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
         }
         if (s.present) {
             s.canonical = known.shared_canonical(g, handle);
-            if (!s.canonical) {
-                auto path = std::make_shared<Polyline>();
-                path->reserve(s.raw->size());
-                for (std::size_t i = 0; i < s.raw->size(); ++i) {
-                    try {
-                        path->push_back(mesh.canonical((*s.raw)[i]));
-                    } catch (const InvalidInput& ex) {
-                        throw InvalidInput("coarse edge " + std::to_string(e) + ": point " + std::to_string(i) + ": " +
-                                           ex.what());
-                    }
-                }
-                s.canonical = std::move(path);
-            }
+            if (!s.canonical) s.canonical = std::make_shared<const Polyline>(canonical_polyline(mesh, *s.raw, e));
         }
         d.edge_slot[static_cast<std::size_t>(e)] = static_cast<int>(d.edges.size());
         d.edges.push_back(std::move(s));
