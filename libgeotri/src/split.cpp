@@ -171,10 +171,13 @@ SplitResult connect_new_vertex(GeodesicTriangulation& g, const SurfacePoint& at,
     return result;
 }
 
+/// Points of two polylines closer than this times T's size are the same to common_prefix().
+constexpr double k_common_prefix_tolerance = 1e-9;
+
 /// How many leading points the polylines p and q have in common (within 1e-9 of T's size: the same geodesic
 /// traced by two propagations can differ in the last bits of its edge crossings).
 std::size_t common_prefix(const Mesh& mesh, const Polyline& p, const Polyline& q) {
-    const double tolerance = 1e-9 * mesh.size();
+    const double tolerance = k_common_prefix_tolerance * mesh.size();
     std::size_t n = 0;
     while (n < p.size() && n < q.size() && (mesh.point(p[n]) - mesh.point(q[n])).norm() <= tolerance) ++n;
     return n;
@@ -358,16 +361,27 @@ SplitResult split_fork(GeodesicTriangulation& g, const Fork& fork, const SplitOp
             return result;
         }
 
-    // The polylines from the fork's point: back to a along the common part, and on to each end of the run.
-    const Polyline& first = g.path(run.front());
-    const SurfacePoint at = first[fork.common - 1];
-    std::vector<std::pair<VertexHandle, Polyline>> paths{
-        {a, Polyline(first.rend() - static_cast<long>(fork.common), first.rend())}};
+    // The polylines from the fork's point: back to a along the common part, and on to each end of the run. The
+    // run's polylines part at one point within the tolerance of common_prefix(), which one of them may reach as a
+    // fine vertex and another as crossings of edges at 1 - 1e-16 (geodesics along a line of vertices of T): the
+    // common part is then that of the polyline through the vertex, and the others leave out their points at it.
+    const Mesh& mesh = g.fine().mesh;
+    Polyline common = g.path(run.front());
+    for (HalfedgeHandle h : run) {
+        Polyline line = g.path(h);
+        if (line[fork.common - 1].kind == geodesic::PointKind::vertex) common = std::move(line);
+    }
+    common.resize(fork.common);
+    const SurfacePoint at = common.back();
+    const double tolerance = k_common_prefix_tolerance * mesh.size();
+    std::vector<std::pair<VertexHandle, Polyline>> paths{{a, Polyline(common.rbegin(), common.rend())}};
     for (HalfedgeHandle h : run) {
         const Polyline& line = g.path(h);
-        Polyline onward{at};
-        onward.insert(onward.end(), line.begin() + static_cast<long>(fork.common), line.end());
-        paths.emplace_back(coarse.to_vertex_handle(h), std::move(onward));
+        auto onward = line.begin() + static_cast<long>(fork.common);
+        while (onward + 1 != line.end() && (mesh.point(*onward) - mesh.point(at)).norm() <= tolerance) ++onward;
+        Polyline path{at};
+        path.insert(path.end(), onward, line.end());
+        paths.emplace_back(coarse.to_vertex_handle(h), std::move(path));
     }
 
     std::vector<Spoke> spokes(2);

@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -368,6 +369,60 @@ TEST(Split, forks_leave_two_edges_of_the_fan_outside_and_others_are_refused) {
             EXPECT_FALSE(r.done);
             EXPECT_NE(r.reason.find("fewer than two"), std::string::npos) << r.reason;
             EXPECT_EQ(g.coarse().n_faces(), faces);
+        }
+    }
+}
+
+TEST(Split, a_fork_whose_geodesics_reach_their_parting_vertex_one_as_a_vertex_one_as_an_edge_crossing_parts_there) {
+    // Geodesics along a line of vertices of T (42400-IDGH) can pass a vertex as crossings of its edges at 1 - 1e-16:
+    // two that run together to a vertex n, one through n and one by such crossings, must part at n itself, with
+    // polylines that go on from n (split_fork once took the crossing, which shares no face with the other's next
+    // point). Hand-made on the cube: the two geodesics leave corner 0 to n, then each crosses an edge of its own.
+    const GeodesicTriangulation cube = unit_cube_g();
+    const geodesic::Mesh& mesh = cube.fine().mesh;
+    const int c = cube.location(VertexHandle(0)).vertex;
+    const int n = mesh.head(*mesh.outgoing_halfedges(c).begin());
+    auto halfway = [&](int w) { return mesh.canonical(SurfacePoint::on_edge(n, w, 0.5)); };
+    std::vector<int> beyond;  // the neighbours of n but c, in order
+    for (int h : mesh.outgoing_halfedges(n))
+        if (mesh.head(h) != c) beyond.push_back(mesh.head(h));
+    int y = -1, w = -1;  // two of them whose edges from n are on no common face
+    for (int i : beyond)
+        for (int j : beyond)
+            if (y < 0 && i != j && common_face(mesh, halfway(i), halfway(j)) < 0) y = i, w = j;
+    ASSERT_GE(y, 0);
+    const double almost_1 = 1.0 - 1e-16;  // rounds to 1 - 2^-53
+    ASSERT_LT(almost_1, 1.0);
+    const Polyline through_n{SurfacePoint::at_vertex(c), SurfacePoint::at_vertex(n), halfway(w)};
+    const Polyline past_n{SurfacePoint::at_vertex(c), SurfacePoint::on_edge(y, n, almost_1),
+                          SurfacePoint::on_edge(y, n, almost_1 - 1e-16), halfway(y)};
+    for (bool vertex_first : {true, false}) {
+        SCOPED_TRACE(vertex_first ? "the polyline through n first" : "the polyline past n first");
+        GeodesicTriangulation g = cube;
+        std::vector<OpenMesh::HalfedgeHandle> fan;
+        for (auto h : g.coarse().voh_ccw_range(VertexHandle(0))) fan.push_back(h);
+        // Only the fork matters: each polyline then jumps to its far end.
+        for (int k = 0; k < 2; ++k) {
+            Polyline path = (k == 0) == vertex_first ? through_n : past_n;
+            path.push_back(g.location(g.coarse().to_vertex_handle(fan[static_cast<std::size_t>(k)])));
+            g.set_path(fan[static_cast<std::size_t>(k)], path);
+        }
+        const std::vector<Fork> forks = find_forks(g, VertexHandle(0));
+        ASSERT_EQ(forks.size(), 1u);
+        ASSERT_EQ(forks[0].common, 2u);
+        const std::array<VertexHandle, 2> ends{g.coarse().to_vertex_handle(fan[0]), g.coarse().to_vertex_handle(fan[1])};
+        const SplitResult r = split_fork(g, forks[0]);
+        ASSERT_TRUE(r.done) << r.reason;
+        EXPECT_EQ(g.location(r.vertex), SurfacePoint::at_vertex(n));
+        const Polyline common = g.path(g.coarse().find_halfedge(VertexHandle(0), r.vertex));
+        EXPECT_EQ(common, (Polyline{SurfacePoint::at_vertex(c), SurfacePoint::at_vertex(n)}));
+        for (VertexHandle end : ends) {
+            const Polyline onward = g.path(g.coarse().find_halfedge(r.vertex, end));
+            ASSERT_GE(onward.size(), 2u);
+            EXPECT_EQ(onward[0], SurfacePoint::at_vertex(n));
+            EXPECT_GE(common_face(mesh, onward[0], onward[1]), 0) << geodesic::to_spec(onward[1]);
+            // The crossings at n are left out, not kept as steps of 1e-16.
+            EXPECT_GT((mesh.point(onward[1]) - mesh.point(onward[0])).norm(), 1e-3) << geodesic::to_spec(onward[1]);
         }
     }
 }
