@@ -196,18 +196,25 @@ SurfacePoint point_along(const GeodesicTriangulation& g, EdgeHandle e, double fr
     return point_on_segment(g.fine().mesh, line[i], line[i + 1], u);
 }
 
-SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, const SplitOptions& options) {
+namespace {
+
+/// Throws InvalidInput unless e is an edge of G's coarse mesh.
+void require_edge(const CoarseMesh& coarse, EdgeHandle e, const char* operation) {
+    if (!e.is_valid() || static_cast<std::size_t>(e.idx()) >= coarse.n_edges() || coarse.status(e).deleted())
+        throw InvalidInput(std::string(operation) + ": not an edge of the coarse mesh");
+}
+
+/// split_edge() at the point at parameter u of segment i of e's polyline.
+SplitResult split_edge_on_segment(GeodesicTriangulation& g, EdgeHandle e, std::size_t i, double u,
+                                  const SplitOptions& options) {
     CoarseMesh& coarse = g.coarse();
     const Mesh& mesh = g.fine().mesh;
     SplitResult result;
-    if (!e.is_valid() || static_cast<std::size_t>(e.idx()) >= coarse.n_edges() || coarse.status(e).deleted())
-        throw InvalidInput("split_edge: not an edge of the coarse mesh");
     const std::string name = "coarse edge " + std::to_string(e.idx());
     if (coarse.is_boundary(e)) {
         result.reason = name + " is on a boundary";
         return result;
     }
-    if (!(fraction > 0.0 && fraction < 1.0)) throw InvalidInput("split_edge: the fraction is not in (0, 1)");
     const HalfedgeHandle ab = coarse.halfedge_handle(e, 0), ba = coarse.halfedge_handle(e, 1);
     const VertexHandle a = coarse.from_vertex_handle(ab), b = coarse.to_vertex_handle(ab);
     const HalfedgeHandle bc = coarse.next_halfedge_handle(ab), ca = coarse.next_halfedge_handle(bc);
@@ -216,7 +223,6 @@ SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, 
 
     // The two parts of the old polyline, from the new vertex m.
     const Polyline line = g.path(ab);
-    const auto [i, u] = locate_along(mesh, line, fraction);
     const SurfacePoint m = point_on_segment(mesh, line[i], line[i + 1], u);
     if (m == line.front() || m == line.back()) {
         result.reason = name + ": the split point is an end of the edge";
@@ -249,12 +255,28 @@ SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, 
         spoke(c, ab, towards_b, towards_a, ca, coarse.opposite_halfedge_handle(bc), "c-a", "c-b"),
         spoke(d, ba, towards_a, towards_b, db, coarse.opposite_halfedge_handle(ad), "d-b", "d-a")};
 
-    const std::string why = find_spokes(g, m, spokes, options, true);
+    const std::string why = find_spokes(g, m, spokes, options, options.checked);
     if (!why.empty()) {
         result.reason = name + ": " + why;
         return result;
     }
     return connect_new_vertex(g, m, [&](VertexHandle v) { coarse.split(e, v); }, {{a, to_a}, {b, to_b}}, spokes);
+}
+
+}  // namespace
+
+SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, const SplitOptions& options) {
+    require_edge(g.coarse(), e, "split_edge");
+    if (!(fraction > 0.0 && fraction < 1.0)) throw InvalidInput("split_edge: the fraction is not in (0, 1)");
+    const auto [i, u] = locate_along(g.fine().mesh, g.polyline(e), fraction);
+    return split_edge_on_segment(g, e, i, u, options);
+}
+
+SplitResult split_edge_at_point(GeodesicTriangulation& g, EdgeHandle e, std::size_t index, const SplitOptions& options) {
+    require_edge(g.coarse(), e, "split_edge_at_point");
+    if (index == 0 || index + 1 >= g.polyline(e).size())
+        throw InvalidInput("split_edge_at_point: point " + std::to_string(index) + " is not inside the polyline");
+    return split_edge_on_segment(g, e, index, 0.0, options);
 }
 
 SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoint& p, const SplitOptions& options) {

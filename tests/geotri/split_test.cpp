@@ -86,6 +86,35 @@ TEST(Split, edge_split_fractions_outside_the_open_interval_are_invalid_input) {
     EXPECT_THROW(split_edge(g, EdgeHandle(1000), 0.5), InvalidInput);
 }
 
+TEST(Split, edge_split_at_a_point_of_the_polyline_puts_the_vertex_there_and_keeps_both_parts) {
+    GeodesicTriangulation g = unit_cube_g();
+    const EdgeHandle e = edge_between(g.coarse(), 0, 3);
+    const Polyline line = g.polyline(e);
+    const double length = g.length(e);
+    // The diagonal of a side crosses its fine grid of 4 x 4 squares: every inner point, at a vertex or on an edge.
+    ASSERT_GE(line.size(), 3u);
+    for (std::size_t index = 1; index + 1 < line.size(); ++index) {
+        SCOPED_TRACE("point " + std::to_string(index) + ", " + geodesic::to_spec(line[index]));
+        GeodesicTriangulation copy = g;
+        const SplitResult r = split_edge_at_point(copy, e, index);
+        ASSERT_TRUE(r.done) << r.reason;
+        EXPECT_EQ(copy.location(r.vertex), g.fine().mesh.canonical(line[index]));
+        const VertexHandle a = g.coarse().from_vertex_handle(g.coarse().halfedge_handle(e, 0));
+        const VertexHandle b = g.coarse().to_vertex_handle(g.coarse().halfedge_handle(e, 0));
+        const Polyline to_a = copy.path(copy.coarse().find_halfedge(r.vertex, a));
+        const Polyline to_b = copy.path(copy.coarse().find_halfedge(r.vertex, b));
+        EXPECT_EQ(to_a, Polyline(line.rend() - static_cast<long>(index) - 1, line.rend()));
+        EXPECT_EQ(to_b, Polyline(line.begin() + static_cast<long>(index), line.end()));
+        EXPECT_NEAR(copy.length(copy.coarse().edge_handle(copy.coarse().find_halfedge(r.vertex, a))) +
+                        copy.length(copy.coarse().edge_handle(copy.coarse().find_halfedge(r.vertex, b))),
+                    length, 1e-14);
+        expect_valid_with_area(copy);
+    }
+    EXPECT_THROW(split_edge_at_point(g, e, 0), InvalidInput);
+    EXPECT_THROW(split_edge_at_point(g, e, line.size() - 1), InvalidInput);
+    EXPECT_THROW(split_edge_at_point(g, EdgeHandle(1000), 1), InvalidInput);
+}
+
 TEST(Split, face_split_inside_a_cube_side_joins_the_corners_with_straight_segments) {
     GeodesicTriangulation g = unit_cube_g();
     // Face (0, 3, 1) of the bottom side: corners (0,0,0), (1,1,0), (1,0,0). A point inside it, on the fine mesh.

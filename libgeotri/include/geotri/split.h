@@ -31,6 +31,9 @@ struct SplitOptions {
     /// points include every coarse vertex that the split joins it to: the split uses it instead of propagating
     /// again. For a caller that tries one point in several patches.
     bool propagated = false;
+    /// false: split_edge() takes the shortest geodesics from the new vertex whatever they do, and checks nothing;
+    /// for untangling, which judges the result on all of G.
+    bool checked = true;
 };
 
 struct SplitResult {
@@ -51,6 +54,11 @@ SurfacePoint point_along(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e,
 /// G valid around e and every polyline of e's faces traced.
 SplitResult split_edge(GeodesicTriangulation& g, OpenMesh::EdgeHandle e, double fraction,
                        const SplitOptions& options = {});
+
+/// split_edge() at point `index` of e's polyline (from from_vertex(halfedge(e, 0))), which must not be an end.
+/// Untangling splits an edge where another geodesic meets it, at a vertex of T, with `checked` false.
+SplitResult split_edge_at_point(GeodesicTriangulation& g, OpenMesh::EdgeHandle e, std::size_t index,
+                                const SplitOptions& options = {});
 
 /// Splits face f = (a, b, c) at p, a point of T strictly inside its patch, with new geodesics p-a, p-b and p-c
 /// inside that patch. Refused when p is not strictly inside the patch, or the three geodesics cannot be made so
