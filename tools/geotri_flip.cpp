@@ -34,8 +34,8 @@ int total(const std::array<int, 4>& c) { return c[0] + c[1] + c[2] + c[3]; }
 
 int run(tools::Tool& tool) {
     CLI::App& app = tool.app;
-    app.description("Makes a geodesic triangulation (.gtri) valid (untangle: edge flips, then fork splits, edge\n"
-                    "collapses and vertex moves where no flip helps), then flips edges while that improves the\n"
+    app.description("Makes a geodesic triangulation (.gtri) valid (untangle: edge flips, then edge splits at\n"
+                    "forks and meetings, edge collapses and vertex moves where no flip helps), then flips edges while that improves the\n"
                     "triangles (geodesic Delaunay), and writes the result. Every new edge is an exact geodesic.");
     tool.set_help_footer({"geotri-flip bone.gtri -o bone.flip.gtri", "geotri-flip bone.gtri -o bone.flip.gtri --criterion length --json"},
                          "the result is written, and it is valid", {"3  the result is written, but untangling could not make it valid (the report says what is left)"});
@@ -94,6 +94,7 @@ int run(tools::Tool& tool) {
         }
         summary.add("untangle_flips", r.untangle_flips);
         summary.add("untangle_fork_splits", r.untangle_fork_splits);
+        summary.add("untangle_meeting_splits", r.untangle_meeting_splits);
         summary.add("untangle_collapses", r.untangle_collapses);
         summary.add("untangle_relocations", r.untangle_relocations);
         summary.add("untangle_rejected", r.untangle_rejected);
@@ -124,9 +125,10 @@ int run(tools::Tool& tool) {
         std::fprintf(stderr, "%s: before: %s (%s)\n", program, r.valid_before ? "valid" : "INVALID",
                      counts(r.violations_before).c_str());
         std::fprintf(stderr,
-                     "%s: untangle: %d flips, %d fork splits, %d collapses and %d vertex moves kept, %d tried and "
-                     "undone, %d not possible%s\n",
-                     program, r.untangle_flips, r.untangle_fork_splits, r.untangle_collapses, r.untangle_relocations,
+                     "%s: untangle: %d flips, %d fork splits, %d splits at meetings, %d collapses and %d vertex moves "
+                     "kept, %d tried and undone, %d not possible%s\n",
+                     program, r.untangle_flips, r.untangle_fork_splits, r.untangle_meeting_splits, r.untangle_collapses,
+                     r.untangle_relocations,
                      r.untangle_rejected, r.untangle_refused,
                      r.untangle_stuck ? "; stuck: no operation lowers the violations left" : "");
         if (r.improve_skipped) {

@@ -114,13 +114,14 @@ void build_geodesic_triangulation(const std::shared_ptr<const geotri::FineMesh>&
     std::printf("traced %zu edges as exact geodesics (%d propagations)\n", g.coarse().n_edges(),
                 traced.propagations);
 
-    // Traced geodesics may cross or fold over one another; flips, fork splits, collapses and vertex moves untangle
+    // Traced geodesics may cross or fold over one another; flips, splits, collapses and vertex moves untangle
     // them, then flips make the triangles better shaped. Untangling may not succeed on every mesh: the result says so.
     const geotri::FlipToDelaunayResult flipped = geotri::flip_to_delaunay(g);
-    std::printf("untangling (%s before): %d flips, %d fork splits, %d collapses, %d vertex moves; %d flips towards "
-                "Delaunay\n",
+    std::printf("untangling (%s before): %d flips, %d fork splits, %d splits at meetings, %d collapses, %d vertex "
+                "moves; %d flips towards Delaunay\n",
                 flipped.valid_before ? "valid" : "invalid", flipped.untangle_flips, flipped.untangle_fork_splits,
-                flipped.untangle_collapses, flipped.untangle_relocations, flipped.improve_flips);
+                flipped.untangle_meeting_splits, flipped.untangle_collapses, flipped.untangle_relocations,
+                flipped.improve_flips);
 
     // The judge: the four validity conditions, and summary figures. It reports an invalid G, it does not throw.
     const geotri::ValidationReport report = geotri::validate(g);

@@ -254,6 +254,107 @@ std::vector<int> candidate_vertices(const CoarseMesh& coarse, const ValidationRe
     return {vertices.begin(), vertices.end()};
 }
 
+/// Counts the violations of conditions 1-3 of a trial copy of G (ViolationCount, from what the trial changed).
+using CountViolations = std::function<int(const GeodesicTriangulation&)>;
+
+/// At most this many operations settle a split's new vertex (settle_around()).
+constexpr int k_max_settle_steps = 8;
+
+/// Settles the new vertex v of a split that untangling tries: while one of these lowers G's violations of conditions
+/// 1-3, does the first that does (v's split and these are one untangling move), at most k_max_settle_steps times:
+/// a flip of an edge of the stars or links of v and the vertices added here, or a fork split at them or at their
+/// neighbours. A split's new geodesics often run through a vertex of G or along one of its geodesics, which such
+/// an operation then mends, and the split lowers the count only with it: on femur_cgal, a fork split at coarse
+/// vertex 6 takes the count from 9 to 12 and a flip after it to 7; on 42400-IDGH, one at coarse vertex 48 leaves
+/// it at 6 with a new fork at a neighbour, whose split takes it to 4.
+void settle_around(GeodesicTriangulation& g, OpenMesh::VertexHandle v, geodesic::ExactGeodesic& propagation,
+                   const CountViolations& count_violations) {
+    const CoarseMesh& coarse = g.coarse();
+    std::vector<OpenMesh::VertexHandle> added{v};
+    int count = count_violations(g);
+    // Does `operation` on a copy of G and keeps it when it lowers the count.
+    auto keep_if_lower = [&](const std::function<bool(GeodesicTriangulation&)>& operation) {
+        GeodesicTriangulation trial = g;
+        try {
+            if (!operation(trial)) return false;
+        } catch (const InvalidInput&) {
+            return false;  // G is unfit for it around there (it is not valid)
+        }
+        const int after = count_violations(trial);
+        if (after >= count) return false;
+        g = std::move(trial);
+        count = after;
+        return true;
+    };
+    for (int step = 0; step < k_max_settle_steps && count > 0; ++step) {
+        std::set<int> edges, vertices;
+        for (OpenMesh::VertexHandle a : added) {
+            vertices.insert(a.idx());
+            for (HalfedgeHandle h : coarse.voh_range(a)) {
+                edges.insert(coarse.edge_handle(h).idx());
+                edges.insert(coarse.edge_handle(coarse.next_halfedge_handle(h)).idx());
+                vertices.insert(coarse.to_vertex_handle(h).idx());
+            }
+        }
+        bool kept = false;
+        for (auto it = edges.begin(); it != edges.end() && !kept; ++it) {
+            const EdgeHandle e(*it);
+            if (coarse.is_boundary(e) || !coarse.is_flip_ok(e)) continue;
+            kept = keep_if_lower([&](GeodesicTriangulation& trial) {
+                FlipOptions unchecked;
+                unchecked.check_validity = false;
+                unchecked.propagation = &propagation;
+                return flip(trial, e, unchecked).accepted();
+            });
+        }
+        for (auto it = vertices.begin(); it != vertices.end() && !kept; ++it)
+            for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(*it))) {
+                OpenMesh::VertexHandle split_vertex;
+                kept = keep_if_lower([&](GeodesicTriangulation& trial) {
+                    SplitOptions options;
+                    options.propagation = &propagation;
+                    const SplitResult split = split_fork(trial, fork, options);
+                    split_vertex = split.vertex;
+                    return split.done;
+                });
+                if (kept) {
+                    added.push_back(split_vertex);
+                    break;
+                }
+            }
+        if (!kept) break;
+    }
+}
+
+/// The places where the violations of condition 3 say that two geodesics meet at a vertex of T that is inside
+/// both: each of the two edges with the index of that vertex in its polyline. Sorted, without repeats.
+std::vector<std::pair<EdgeHandle, std::size_t>> meetings_at_fine_vertices(const GeodesicTriangulation& g,
+                                                                          const ValidationReport& report) {
+    auto inner_vertices = [&](EdgeHandle e) {
+        std::vector<std::pair<int, std::size_t>> found;  // fine vertex, index
+        const Polyline& line = g.polyline(e);
+        for (std::size_t i = 1; i + 1 < line.size(); ++i)
+            if (line[i].kind == geodesic::PointKind::vertex) found.emplace_back(line[i].vertex, i);
+        std::sort(found.begin(), found.end());
+        return found;
+    };
+    std::set<std::pair<int, std::size_t>> places;
+    for (const Violation& v : report.violations) {
+        if (v.condition != 3 || v.coarse_edges.size() != 2 || v.coarse_edges[0] == v.coarse_edges[1]) continue;
+        const EdgeHandle e(v.coarse_edges[0]), f(v.coarse_edges[1]);
+        const auto in_e = inner_vertices(e), in_f = inner_vertices(f);
+        for (const auto& [vertex, i] : in_e)
+            for (const auto& [other, j] : in_f)
+                if (vertex == other) {
+                    places.emplace(e.idx(), i);
+                    places.emplace(f.idx(), j);
+                }
+    }
+    std::vector<std::pair<EdgeHandle, std::size_t>> out;
+    for (const auto& [e, i] : places) out.emplace_back(EdgeHandle(e), i);
+    return out;
+}
+
 /// Throws std::logic_error unless `counted`, the violations of conditions 1-3 of a G that ViolationCount found, are
 /// those of `report`, validate()'s on that G.
 void check_count(int counted, const ValidationReport& report, const char* what) {
@@ -298,14 +399,15 @@ ValidationReport without_condition_4(ValidationReport report) {
 }
 
 /// One untangling move: `run` does it on a copy of G with the propagation object of its thread, and returns how
-/// many operations it did (0: not possible there). `key` names it by kind and coarse vertices.
+/// many operations it did (0: not possible there); a move of several steps can judge them with the count it is
+/// given. `key` names it by kind and coarse vertices.
 struct Move {
-    std::function<int(GeodesicTriangulation&, geodesic::ExactGeodesic&)> run;
+    std::function<int(GeodesicTriangulation&, geodesic::ExactGeodesic&, const CountViolations&)> run;
     std::array<int, 3> key;
 };
 
 /// The kinds of untangling moves, for their keys.
-enum MoveKind : int { k_flip, k_fork_split, k_fork_chain, k_collapse, k_relocate };
+enum MoveKind : int { k_flip, k_fork_split, k_fork_chain, k_meeting_split, k_collapse, k_relocate };
 
 /// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
 class Untangler {
@@ -338,6 +440,9 @@ public:
             bool better = false;
             std::exception_ptr error;
         };
+        const CountViolations count_trial = [this](const GeodesicTriangulation& trial) {
+            return count_->count(trial, verdicts_);
+        };
         for (std::size_t first = 0; first < moves.size(); first += static_cast<std::size_t>(threads_)) {
             const std::size_t n = std::min(moves.size() - first, static_cast<std::size_t>(threads_));
             std::vector<Trial> trials(n);
@@ -349,7 +454,7 @@ public:
                 try {
                     t.g.emplace(g_);
                     try {
-                        t.operations = moves[first + static_cast<std::size_t>(i)].run(*t.g, propagation());
+                        t.operations = moves[first + static_cast<std::size_t>(i)].run(*t.g, propagation(), count_trial);
                     } catch (const InvalidInput&) {
                         t.operations = 0;
                     }
@@ -426,7 +531,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
             if (g.coarse().is_boundary(e) || !g.coarse().is_flip_ok(e)) continue;
             const int a = g.coarse().to_vertex_handle(g.coarse().halfedge_handle(e, 0)).idx();
             const int b = g.coarse().to_vertex_handle(g.coarse().halfedge_handle(e, 1)).idx();
-            auto run = [e](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+            auto run = [e](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation, const CountViolations&) {
                 FlipOptions unchecked;
                 unchecked.check_validity = false;
                 unchecked.propagation = &propagation;
@@ -445,8 +550,12 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         std::vector<Move> moves;
         for (int index : candidate_vertices(g.coarse(), report))
             for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(index))) {
-                auto run = [fork, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
-                    return split_fork(trial, fork, split_options(propagation)).done ? 1 : 0;
+                auto run = [fork, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
+                                                 const CountViolations& count) {
+                    const SplitResult split = split_fork(trial, fork, split_options(propagation));
+                    if (!split.done) return 0;
+                    settle_around(trial, split.vertex, propagation, count);
+                    return 1;
                 };
                 moves.push_back({run, {k_fork_split, index, g.coarse().to_vertex_handle(fork.first).idx()}});
             }
@@ -457,7 +566,8 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     // the violations name, round after round while there are any, and is judged as one move.
     auto try_fork_chain = [&] {
         const ValidationReport& start = report;
-        auto chain = [&start, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+        auto chain = [&start, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
+                                             const CountViolations&) {
             ValidationOptions cheap;
             cheap.overlay = false;
             ValidationReport current = start;
@@ -477,6 +587,25 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         // Its key changes with the number of violations, so that it is tried again first once they have changed.
         return untangler.keep_first_better({{chain, {k_fork_chain, total(report), 0}}}, result.untangle_fork_splits);
     };
+    // Shortest geodesics from different vertices meet at saddle vertices of T, and where several pass through one,
+    // no flip parts them: a coarse vertex there, splitting one of them, settled (settle_around()), may.
+    auto try_meeting_splits = [&] {
+        std::vector<Move> moves;
+        for (const auto& [e, index] : meetings_at_fine_vertices(g, report)) {
+            auto run = [e = e, index = index, split_options](GeodesicTriangulation& trial,
+                                                            geodesic::ExactGeodesic& propagation,
+                                                            const CountViolations& count) {
+                SplitOptions unchecked = split_options(propagation);
+                unchecked.checked = false;
+                const SplitResult split = split_edge_at_point(trial, e, index, unchecked);
+                if (!split.done) return 0;
+                settle_around(trial, split.vertex, propagation, count);
+                return 1;
+            };
+            moves.push_back({run, {k_meeting_split, e.idx(), static_cast<int>(index)}});
+        }
+        return untangler.keep_first_better(moves, result.untangle_meeting_splits);
+    };
     // A collapse removes a coarse vertex whose edges no flip or split could straighten out: its neighbours are
     // joined to the vertex it merges into by new shortest geodesics.
     auto try_collapses = [&] {
@@ -484,7 +613,8 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         for (int index : candidate_vertices(g.coarse(), report))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index)))
             {
-                auto run = [h](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+                auto run = [h](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
+                               const CountViolations&) {
                     CollapseOptions unchecked;
                     unchecked.check_validity = false;
                     unchecked.propagation = &propagation;
@@ -501,7 +631,8 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         for (int index : candidate_vertices(g.coarse(), report)) {
             const OpenMesh::VertexHandle v(index);
             for (int to : nearby_fine_vertices(g, v, k_relocation_rings)) {
-                auto run = [v, to](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation) {
+                auto run = [v, to](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
+                                   const CountViolations&) {
                     RelocateOptions unchecked;
                     unchecked.check_validity = false;
                     unchecked.propagation = &propagation;
@@ -513,11 +644,12 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         return untangler.keep_first_better(moves, result.untangle_relocations);
     };
     int round = 0;
-    while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_collapses +
-                                    result.untangle_relocations <
+    while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_meeting_splits +
+                                    result.untangle_collapses + result.untangle_relocations <
                                 options.max_untangle_operations) {
         ++round;
-        if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_collapses() && !try_relocations()) {
+        if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_meeting_splits() && !try_collapses() &&
+            !try_relocations()) {
             result.untangle_stuck = true;
             break;
         }

@@ -272,7 +272,8 @@ SplitResult split_edge(GeodesicTriangulation& g, EdgeHandle e, double fraction, 
     return split_edge_on_segment(g, e, i, u, options);
 }
 
-SplitResult split_edge_at_point(GeodesicTriangulation& g, EdgeHandle e, std::size_t index, const SplitOptions& options) {
+SplitResult split_edge_at_point(GeodesicTriangulation& g, EdgeHandle e, std::size_t index,
+                                const SplitOptions& options) {
     require_edge(g.coarse(), e, "split_edge_at_point");
     if (index == 0 || index + 1 >= g.polyline(e).size())
         throw InvalidInput("split_edge_at_point: point " + std::to_string(index) + " is not inside the polyline");

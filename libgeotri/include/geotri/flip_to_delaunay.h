@@ -58,10 +58,12 @@ struct FlipToDelaunayResult {
     std::vector<Violation> remaining;  ///< the violations left when G is still invalid
 
     // Untangling's moves that strictly lowered the violation count, by kind (each kind where the ones before it
-    // did not help): flips, fork splits (split_fork(), singly or in chains), edge collapses (collapse_edge()) and
-    // vertex moves (relocate_vertex()).
+    // did not help): flips, fork splits (split_fork(), singly or in chains), splits of an edge where another meets
+    // it at a vertex of T (split_edge_at_point()), edge collapses (collapse_edge()) and vertex moves
+    // (relocate_vertex()). A single split counts as one move with the flips around its new vertex that follow it.
     int untangle_flips = 0;
     int untangle_fork_splits = 0;
+    int untangle_meeting_splits = 0;
     int untangle_collapses = 0;
     int untangle_relocations = 0;
     int untangle_rejected = 0;   ///< moves tried that did not lower it (G kept as it was)
