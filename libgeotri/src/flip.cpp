@@ -139,7 +139,7 @@ void check_plan(const GeodesicTriangulation& g, FlipPlan& plan) {
 /// The shortest path from c to d inside the union of the patches of e's two faces. Leaves plan.path empty and sets
 /// the refusal when there is none, or when it touches the region's boundary (then it would pass through a or b, or
 /// run along another polyline).
-void region_path(const GeodesicTriangulation& g, const Overlay& overlay, FlipPlan& plan) {
+void region_path(const GeodesicTriangulation& g, const Overlay* overlay, FlipPlan& plan) {
     const CoarseMesh& coarse = g.coarse();
     const std::string name = "coarse edge " + std::to_string(plan.edge.idx());
     auto refuse = [&plan, &name](FlipRefusal why, const std::string& what) {
@@ -151,7 +151,7 @@ void region_path(const GeodesicTriangulation& g, const Overlay& overlay, FlipPla
     const int f1 = coarse.face_handle(coarse.halfedge_handle(plan.edge, 1)).idx();
     PatchRegion::Path found;
     try {
-        const PatchRegion region(g, overlay, {f0, f1});
+        const PatchRegion region = overlay ? PatchRegion(g, *overlay, {f0, f1}) : PatchRegion(g, {f0, f1});
         found = region.shortest_path(g.location(plan.c), g.location(plan.d));
     } catch (const InvalidInput& e) {
         return refuse(FlipRefusal::leaves_region, e.what());
@@ -161,6 +161,15 @@ void region_path(const GeodesicTriangulation& g, const Overlay& overlay, FlipPla
     plan.path = std::move(found.polyline);
     plan.length = geodesic::path_length(g.fine().mesh, plan.path);
     plan.in_region = true;
+}
+
+/// plan_flip_in_region(), with the patches cut out of `overlay`, or of T alone when it is null.
+FlipPlan plan_in_region(const GeodesicTriangulation& g, EdgeHandle e, const Overlay* overlay) {
+    FlipPlan plan = start_plan(g, e);
+    if (!plan.accepted()) return plan;
+    region_path(g, overlay, plan);
+    if (plan.accepted()) check_plan(g, plan);
+    return plan;
 }
 
 }  // namespace
@@ -193,21 +202,17 @@ FlipPlan plan_flip(const GeodesicTriangulation& g, EdgeHandle e, const FlipOptio
     if (!options.check_validity) return plan;
     check_plan(g, plan);
     if (plan.accepted() || !options.region_fallback || plan.refusal == FlipRefusal::no_path) return plan;
-    Overlay built;
-    if (!options.overlay) built = build_overlay(g);
-    FlipPlan inside = plan_flip_in_region(g, e, options.overlay ? *options.overlay : built);
+    FlipPlan inside = plan_in_region(g, e, options.overlay);
     if (inside.accepted()) return inside;
     plan.reason += "; " + inside.reason;
     return plan;
 }
 
 FlipPlan plan_flip_in_region(const GeodesicTriangulation& g, EdgeHandle e, const Overlay& overlay) {
-    FlipPlan plan = start_plan(g, e);
-    if (!plan.accepted()) return plan;
-    region_path(g, overlay, plan);
-    if (plan.accepted()) check_plan(g, plan);
-    return plan;
+    return plan_in_region(g, e, &overlay);
 }
+
+FlipPlan plan_flip_in_region(const GeodesicTriangulation& g, EdgeHandle e) { return plan_in_region(g, e, nullptr); }
 
 void apply_flip(GeodesicTriangulation& g, const FlipPlan& plan) {
     if (!plan.accepted()) throw InvalidInput("apply_flip: the flip was refused: " + plan.reason);

@@ -118,8 +118,9 @@ public:
         std::vector<std::size_t> again;
         for (std::size_t k = 0; k < found.size(); ++k)
             if (found[k].wants_region) again.push_back(k);
-        // The overlay costs a pass over T: while ordinary flips go on, the flips that want it wait for a sweep
-        // without them (evaluated again then), so that one overlay serves them all.
+        // While ordinary flips go on, the flips that want the region fallback wait for a sweep without them
+        // (evaluated again then): ordinary flips first. (This once let one overlay of all of T serve them all; each
+        // now cuts its two patches alone out of T.)
         const bool ordinary = std::any_of(found.begin(), found.end(), [](const Evaluation& x) { return x.flip; });
         if (ordinary) {
             for (std::size_t k : again) {
@@ -127,10 +128,9 @@ public:
                 dirty_[static_cast<std::size_t>(edges[k])] = 1;
             }
         } else if (!again.empty()) {
-            const Overlay overlay = build_overlay(g_);
             for_each_parallel(again.size(), [&](std::size_t i, geodesic::ExactGeodesic&) {
                 Evaluation& x = found[again[i]];
-                FlipPlan inside = plan_flip_in_region(g_, EdgeHandle(edges[again[i]]), overlay);
+                FlipPlan inside = plan_flip_in_region(g_, EdgeHandle(edges[again[i]]));
                 if (!inside.accepted()) return;
                 x.plan = std::move(inside);
                 x.refused = FlipRefusal::none;

@@ -1,6 +1,8 @@
 #include <geodesic/errors.h>
 #include <geotri/overlay.h>
 
+#include "patch_overlay.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -92,9 +94,15 @@ public:
         std::vector<std::pair<double, int>> points;  // (t, overlay vertex), sorted by t once finish() ran
     };
 
-    PointTable(const Mesh& mesh, Overlay& out) : mesh_(mesh), out_(out) {
-        out_.positions = mesh.positions();
+    /// With `fine_vertices`, out's positions and points start with T's vertices, at their ids; without, they hold
+    /// the edge and face points only (whose ids start at T's vertex count all the same), for a caller that does
+    /// not want a pass over T.
+    PointTable(const Mesh& mesh, Overlay& out, bool fine_vertices = true)
+        : mesh_(mesh), out_(out), first_stored_(fine_vertices ? 0 : mesh.num_vertices()) {
+        out_.positions.clear();
         out_.points.clear();
+        if (!fine_vertices) return;
+        out_.positions = mesh.positions();
         out_.points.reserve(mesh.num_vertices());
         for (int v = 0; v < mesh.num_vertices(); ++v) out_.points.push_back(SurfacePoint::at_vertex(v));
     }
@@ -122,7 +130,7 @@ public:
         } else {
             key = {2, p.face, bits_of(p.bary[0]), bits_of(p.bary[1]), bits_of(p.bary[2])};
         }
-        auto [it, inserted] = ids_.emplace(key, static_cast<int>(out_.positions.size()));
+        auto [it, inserted] = ids_.emplace(key, first_stored_ + static_cast<int>(out_.positions.size()));
         if (!inserted) return it->second;
         const int id = it->second;
         out_.positions.push_back(mesh_.point(p));
@@ -154,7 +162,8 @@ public:
     int slot_of(int id) const { return is_vertex(id) ? -1 : slot_of_point_[id - mesh_.num_vertices()]; }
     /// For an edge point: its index in [v0, points..., v1] of its slot.
     int position_in_slot(int id) const { return position_in_slot_[id - mesh_.num_vertices()]; }
-    const SurfacePoint& point(int id) const { return out_.points[id]; }
+    /// An edge or face point (T's vertices are stored only with `fine_vertices`).
+    const SurfacePoint& point(int id) const { return out_.points[static_cast<std::size_t>(id - first_stored_)]; }
 
     std::vector<EdgeSlot> edges;
     std::vector<std::pair<int, int>> face_points;  // (face, overlay vertex), sorted once finish() ran
@@ -163,6 +172,7 @@ private:
     const Mesh& mesh_;
     Overlay& out_;
     std::unordered_map<PointKey, int, PointKeyHash> ids_;
+    int first_stored_;  // the id of out's first position
     std::unordered_map<int, int> slot_of_rep_;
     std::vector<int> slot_of_point_;      // per vertex beyond T's
     std::vector<int> position_in_slot_;   // per vertex beyond T's
@@ -585,6 +595,74 @@ std::vector<int> along_edge(const Mesh& mesh, const PointTable& table, int a, in
     return run;
 }
 
+/// The cut along some polylines of G: each one's overlay vertices along the cut (its chain, oriented like the
+/// polyline), its segments through fine faces (chords, sorted by face), and which polyline owns each cut edge.
+struct Cuts {
+    std::vector<std::vector<int>> chain;                // per coarse edge
+    std::vector<Chord> chords;
+    std::unordered_map<std::uint64_t, int> cut_owner;  // undirected overlay edge -> coarse edge
+};
+
+/// Cuts along the polylines of `edges`, whose points are `ids` (per coarse edge) in `table`. Each segment runs
+/// along a fine edge (the cut follows the edge's pieces) or through one fine face (a chord of that face). Marks in
+/// `broken` the polylines that cannot be cut: consecutive points on no common fine face, or overlapping another.
+Cuts cut_along(const Mesh& mesh, const PointTable& table, const std::vector<std::vector<int>>& ids,
+               const std::vector<int>& edges, std::vector<char>& broken) {
+    Cuts cuts;
+    cuts.chain.resize(ids.size());
+    auto mark_cut = [&](int a, int b, int edge) {
+        auto [it, inserted] = cuts.cut_owner.emplace(undirected_key(a, b), edge);
+        if (!inserted && it->second != edge) broken[it->second] = broken[edge] = 1;  // overlapping polylines
+    };
+    std::vector<int> faces;
+    for (int e : edges) {
+        const std::vector<int>& line_ids = ids[e];
+        if (line_ids.size() < 2) continue;
+        std::vector<int>& c = cuts.chain[e];
+        c.push_back(line_ids[0]);
+        for (std::size_t k = 0; k + 1 < line_ids.size(); ++k) {
+            const int a = line_ids[k], b = line_ids[k + 1];
+            if (a == b) continue;
+            const std::vector<int> run = along_edge(mesh, table, a, b);
+            if (!run.empty()) {
+                for (std::size_t r = 0; r + 1 < run.size(); ++r) {
+                    mark_cut(run[r], run[r + 1], e);
+                    c.push_back(run[r + 1]);
+                }
+                continue;
+            }
+            common_faces(mesh, table, a, b, faces);
+            if (faces.empty()) broken[e] = 1;
+            else cuts.chords.push_back({faces[0], a, b, e});
+            mark_cut(a, b, e);
+            c.push_back(b);
+        }
+    }
+    std::stable_sort(cuts.chords.begin(), cuts.chords.end(),
+                     [](const Chord& x, const Chord& y) { return x.face < y.face; });
+    return cuts;
+}
+
+/// The overlay vertices of each polyline of `edges` (per coarse edge; empty, and the edge marked in `broken`, for a
+/// polyline that does not refer to T or has fewer than two points).
+std::vector<std::vector<int>> polyline_ids(const GeodesicTriangulation& g, const std::vector<int>& edges,
+                                           PointTable& table, std::vector<char>& broken) {
+    std::vector<std::vector<int>> ids(g.coarse().n_edges());
+    for (int e : edges) {
+        std::vector<int>& line_ids = ids[e];
+        for (const SurfacePoint& p : g.polyline(OpenMesh::EdgeHandle(e))) {
+            const int id = table.id_of(p);
+            if (id < 0) {
+                line_ids.clear();
+                break;
+            }
+            line_ids.push_back(id);
+        }
+        if (line_ids.size() < 2) broken[e] = 1;
+    }
+    return ids;
+}
+
 /// Topology of each region, as a surface of its own (cut open along the polylines).
 struct RegionShape {
     int triangles = 0;
@@ -612,58 +690,18 @@ Overlay build_overlay(const GeodesicTriangulation& g) {
 
     // 1. Every point of every polyline, and every location, becomes an overlay vertex.
     std::vector<char> broken(num_coarse_edges, 0);
-    std::vector<std::vector<int>> ids(num_coarse_edges);
     std::vector<int> location_id(coarse.n_vertices(), -1);
     for (auto v : coarse.vertices()) location_id[v.idx()] = table.id_of(g.location(v));
-    for (auto e : coarse.edges()) {
-        const Polyline& line = g.polyline(e);
-        std::vector<int>& line_ids = ids[e.idx()];
-        for (const SurfacePoint& p : line) {
-            const int id = table.id_of(p);
-            if (id < 0) {
-                line_ids.clear();
-                break;
-            }
-            line_ids.push_back(id);
-        }
-        if (line_ids.size() < 2) broken[e.idx()] = 1;
-    }
+    std::vector<int> all_edges(num_coarse_edges);
+    std::iota(all_edges.begin(), all_edges.end(), 0);
+    const std::vector<std::vector<int>> ids = polyline_ids(g, all_edges, table, broken);
     table.finish();
 
-    // 2. Each segment runs along a fine edge (the cut follows the edge's pieces) or through one fine face (a
-    // chord of that face). The chain of an edge is its overlay vertices along the cut, oriented like its polyline.
-    std::vector<std::vector<int>> chain(num_coarse_edges);
-    std::vector<Chord> chords;
-    std::unordered_map<std::uint64_t, int> cut_owner;
-    auto mark_cut = [&](int a, int b, int edge) {
-        auto [it, inserted] = cut_owner.emplace(undirected_key(a, b), edge);
-        if (!inserted && it->second != edge) broken[it->second] = broken[edge] = 1;  // overlapping polylines
-    };
-    std::vector<int> faces;
-    for (int e = 0; e < num_coarse_edges; ++e) {
-        const std::vector<int>& line_ids = ids[e];
-        if (line_ids.size() < 2) continue;
-        std::vector<int>& c = chain[e];
-        c.push_back(line_ids[0]);
-        for (std::size_t k = 0; k + 1 < line_ids.size(); ++k) {
-            const int a = line_ids[k], b = line_ids[k + 1];
-            if (a == b) continue;
-            const std::vector<int> run = along_edge(mesh, table, a, b);
-            if (!run.empty()) {
-                for (std::size_t r = 0; r + 1 < run.size(); ++r) {
-                    mark_cut(run[r], run[r + 1], e);
-                    c.push_back(run[r + 1]);
-                }
-                continue;
-            }
-            common_faces(mesh, table, a, b, faces);
-            if (faces.empty()) broken[e] = 1;
-            else chords.push_back({faces[0], a, b, e});
-            mark_cut(a, b, e);
-            c.push_back(b);
-        }
-    }
-    std::stable_sort(chords.begin(), chords.end(), [](const Chord& x, const Chord& y) { return x.face < y.face; });
+    // 2. The chain of each polyline along the cut, and its chords through fine faces.
+    Cuts cuts = cut_along(mesh, table, ids, all_edges, broken);
+    const std::vector<std::vector<int>>& chain = cuts.chain;
+    const std::vector<Chord>& chords = cuts.chords;
+    const std::unordered_map<std::uint64_t, int>& cut_owner = cuts.cut_owner;
 
     // 3. Triangulate: untouched fine faces as they are, the others cut along their chords.
     const int nf = mesh.num_faces();
@@ -887,3 +925,175 @@ Overlay build_overlay(const GeodesicTriangulation& g) {
 }
 
 }  // namespace geotri
+
+namespace geotri::detail {
+
+Overlay build_patch_overlay(const GeodesicTriangulation& g, const std::vector<int>& coarse_faces) {
+    const Mesh& mesh = g.fine().mesh;
+    const CoarseMesh& coarse = g.coarse();
+    const int num_fine_vertices = mesh.num_vertices();
+    std::vector<int> edges;
+    for (int f : coarse_faces) {
+        if (f < 0 || f >= static_cast<int>(coarse.n_faces()) || coarse.status(OpenMesh::FaceHandle(f)).deleted())
+            throw InvalidInput("build_patch_overlay: " + std::to_string(f) + " is not a face of the coarse mesh");
+        for (auto e : coarse.fe_range(OpenMesh::FaceHandle(f))) edges.push_back(e.idx());
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    auto not_a_disk = [](int f, const std::string& why) {
+        return InvalidInput("the patch of coarse face " + std::to_string(f) + " is not a disk (" + why + ")");
+    };
+
+    // 1-2. The points of the faces' polylines and locations, and the cut along those polylines only.
+    Overlay cut;  // the edge and face points, and every triangle made; ids as the table numbers them
+    PointTable table(mesh, cut, false);
+    // Every coarse vertex's location, as in the overlay of all of G: a patch must not hold any but its corners.
+    std::vector<int> location_id(coarse.n_vertices(), -1);
+    for (auto v : coarse.vertices()) location_id[v.idx()] = table.id_of(g.location(v));
+    std::vector<char> broken(coarse.n_edges(), 0);
+    const std::vector<std::vector<int>> ids = polyline_ids(g, edges, table, broken);
+    table.finish();
+    const Cuts cuts = cut_along(mesh, table, ids, edges, broken);
+
+    // 3. The fine faces that the cut touches, cut into triangles; the others are added whole as the flood
+    // reaches them.
+    std::vector<int> touched;
+    for (const Chord& c : cuts.chords) touched.push_back(c.face);
+    for (const auto& [f, id] : table.face_points) touched.push_back(f);
+    for (const auto& e : table.edges)
+        for (int h : {mesh.find_halfedge(e.v0, e.v1), mesh.find_halfedge(e.v1, e.v0)})
+            if (h >= 0) touched.push_back(Mesh::face_of(h));
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    FaceCutter cutter(mesh, table, cut);
+    std::size_t next_chord = 0, next_inside = 0;
+    for (int f : touched) {
+        while (next_chord < cuts.chords.size() && cuts.chords[next_chord].face < f) ++next_chord;
+        std::size_t chord_end = next_chord;
+        while (chord_end < cuts.chords.size() && cuts.chords[chord_end].face == f) ++chord_end;
+        while (next_inside < table.face_points.size() && table.face_points[next_inside].first < f) ++next_inside;
+        std::size_t inside_end = next_inside;
+        while (inside_end < table.face_points.size() && table.face_points[inside_end].first == f) ++inside_end;
+        cutter.cut(f, cuts.chords.data() + next_chord, cuts.chords.data() + chord_end,
+                   table.face_points.data() + next_inside, table.face_points.data() + inside_end, broken);
+    }
+    for (int e : edges)
+        if (broken[e]) throw InvalidInput("coarse edge " + std::to_string(e) + ": its polyline cannot be cut");
+
+    // 4. Each face's patch: a flood from the triangles on the left of its paths across uncut edges.
+    std::unordered_map<std::uint64_t, int> triangle_of;  // directed edge -> the triangle on its left
+    auto directed = [](int a, int b) {
+        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+    };
+    std::vector<int> patch;
+    auto add_triangle = [&](int t) {
+        const auto& tri = cut.triangles[static_cast<std::size_t>(t)];
+        for (int k = 0; k < 3; ++k) triangle_of[directed(tri[k], tri[(k + 1) % 3])] = t;
+        patch.push_back(-1);
+    };
+    for (int t = 0; t < static_cast<int>(cut.triangles.size()); ++t) add_triangle(t);
+    // The triangle on the left of a -> b, or -1. One that the cut did not touch is a whole fine face (a and b are
+    // then T's vertices), added when it is first asked for.
+    auto triangle_left_of = [&](int a, int b) {
+        const auto it = triangle_of.find(directed(a, b));
+        if (it != triangle_of.end()) return it->second;
+        const int h = a < num_fine_vertices && b < num_fine_vertices ? mesh.find_halfedge(a, b) : -1;
+        if (h < 0 || std::binary_search(touched.begin(), touched.end(), Mesh::face_of(h))) return -1;
+        const int t = static_cast<int>(cut.triangles.size());
+        cut.triangles.push_back(mesh.triangle(Mesh::face_of(h)));
+        cut.fine_face.push_back(Mesh::face_of(h));
+        add_triangle(t);
+        return t;
+    };
+    for (int f : coarse_faces) {
+        std::vector<int> stack;
+        std::vector<std::uint64_t> own;  // this face's cut edges
+        for (auto h : coarse.fh_range(OpenMesh::FaceHandle(f))) {
+            const std::vector<int>& c = cuts.chain[static_cast<std::size_t>(coarse.edge_handle(h).idx())];
+            const bool forward = h == coarse.halfedge_handle(coarse.edge_handle(h), 0);
+            const int from = location_id[coarse.from_vertex_handle(h).idx()];
+            if (c.size() < 2 || (forward ? c.front() : c.back()) != from || from < 0)
+                throw not_a_disk(f, "a path does not start at its vertex");
+            for (std::size_t k = 0; k + 1 < c.size(); ++k) {
+                const int a = forward ? c[k] : c[c.size() - 1 - k];
+                const int b = forward ? c[k + 1] : c[c.size() - 2 - k];
+                own.push_back(undirected_key(a, b));
+                const int t = triangle_left_of(a, b);
+                if (t < 0) throw not_a_disk(f, "nothing on the left of a path");
+                int& owner = patch[static_cast<std::size_t>(t)];
+                if (owner == f) continue;
+                if (owner >= 0) throw not_a_disk(f, "it runs into another patch");
+                owner = f;
+                stack.push_back(t);
+            }
+        }
+        std::sort(own.begin(), own.end());
+        std::size_t boundary = 0, triangles = 0;
+        std::vector<int> vertices;
+        while (!stack.empty()) {
+            const int t = stack.back();
+            stack.pop_back();
+            ++triangles;
+            const std::array<int, 3> tri = cut.triangles[static_cast<std::size_t>(t)];
+            for (int k = 0; k < 3; ++k) {
+                const int a = tri[k], b = tri[(k + 1) % 3];
+                vertices.push_back(a);
+                if (cuts.cut_owner.count(undirected_key(a, b))) {
+                    if (!std::binary_search(own.begin(), own.end(), undirected_key(a, b)))
+                        throw not_a_disk(f, "another path runs inside it");
+                    ++boundary;
+                    continue;
+                }
+                const int next = triangle_left_of(b, a);
+                if (next < 0) throw not_a_disk(f, "it reaches a border of T");
+                int& owner = patch[static_cast<std::size_t>(next)];
+                if (owner == f) continue;
+                if (owner >= 0) throw not_a_disk(f, "it runs into another patch");
+                owner = f;
+                stack.push_back(next);
+            }
+        }
+        // Bounded by its paths, each seen once from inside, and a disk: Euler characteristic 1.
+        std::sort(vertices.begin(), vertices.end());
+        vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+        if (boundary != own.size() || (3 * triangles + boundary) % 2 != 0 ||
+            vertices.size() + triangles != (3 * triangles + boundary) / 2 + 1)
+            throw not_a_disk(f, "its triangles do not make a disk bounded by its paths");
+        std::vector<int> corners;
+        for (auto v : coarse.fv_range(OpenMesh::FaceHandle(f))) corners.push_back(location_id[v.idx()]);
+        for (auto v : coarse.vertices()) {
+            const int id = location_id[v.idx()];
+            if (std::find(corners.begin(), corners.end(), id) == corners.end() &&
+                std::binary_search(vertices.begin(), vertices.end(), id))
+                throw not_a_disk(f, "coarse vertex " + std::to_string(v.idx()) + " lies in it");
+        }
+    }
+
+    // 5. The patches' triangles in fine face order (the cut ones in the order the cutter made them), renumbered.
+    std::vector<int> order;
+    for (int t = 0; t < static_cast<int>(patch.size()); ++t)
+        if (patch[static_cast<std::size_t>(t)] >= 0) order.push_back(t);
+    std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+        return cut.fine_face[static_cast<std::size_t>(x)] < cut.fine_face[static_cast<std::size_t>(y)];
+    });
+    Overlay out;
+    std::unordered_map<int, int> renumbered;
+    for (int t : order) {
+        std::array<int, 3> tri = cut.triangles[static_cast<std::size_t>(t)];
+        for (int& v : tri) {
+            const auto [it, inserted] = renumbered.emplace(v, static_cast<int>(out.positions.size()));
+            if (inserted) {
+                const bool fine_vertex = v < num_fine_vertices;
+                out.positions.push_back(fine_vertex ? mesh.position(v) : cut.positions[static_cast<std::size_t>(v - num_fine_vertices)]);
+                out.points.push_back(fine_vertex ? SurfacePoint::at_vertex(v) : cut.points[static_cast<std::size_t>(v - num_fine_vertices)]);
+            }
+            v = it->second;
+        }
+        out.triangles.push_back(tri);
+        out.fine_face.push_back(cut.fine_face[static_cast<std::size_t>(t)]);
+        out.patch.push_back(patch[static_cast<std::size_t>(t)]);
+    }
+    return out;
+}
+
+}  // namespace geotri::detail

@@ -3,6 +3,8 @@
 #include <geotri/patch_region.h>
 #include <geotri/tangent_angles.h>
 
+#include "patch_overlay.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -26,8 +28,18 @@ bool same_point(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q) 
     return mesh.canonical(p) == mesh.canonical(q);
 }
 
-PatchRegion::PatchRegion(const GeodesicTriangulation& g, const Overlay& overlay, const std::vector<int>& coarse_faces)
-    : fine_(&g.fine().mesh), overlay_(&overlay) {
+PatchRegion::PatchRegion(const GeodesicTriangulation& g, const Overlay& overlay, const std::vector<int>& coarse_faces) {
+    cut_out(g, overlay, coarse_faces);
+}
+
+PatchRegion::PatchRegion(const GeodesicTriangulation& g, const std::vector<int>& coarse_faces)
+    : own_overlay_(std::make_shared<const Overlay>(detail::build_patch_overlay(g, coarse_faces))) {
+    cut_out(g, *own_overlay_, coarse_faces);
+}
+
+void PatchRegion::cut_out(const GeodesicTriangulation& g, const Overlay& overlay, const std::vector<int>& coarse_faces) {
+    fine_ = &g.fine().mesh;
+    overlay_ = &overlay;
     for (int f : coarse_faces)
         if (std::binary_search(overlay.bad_patches.begin(), overlay.bad_patches.end(), f))
             throw InvalidInput("the patch of coarse face " + std::to_string(f) + " is not a disk");

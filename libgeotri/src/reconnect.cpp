@@ -121,13 +121,12 @@ public:
         for (std::size_t i = 0; i < k_; ++i)
             for (std::size_t j : leaving[i]) outside.emplace_back(i, j);
         if (outside.empty() || !region_fallback) return {};
-        Overlay built;
-        if (!overlay) built = build_overlay(g_);
         std::vector<int> patches;
         for (FaceHandle f : faces_) patches.push_back(f.idx());
         std::optional<PatchRegion> region;
         try {
-            region.emplace(g_, overlay ? *overlay : built, patches);
+            if (overlay) region.emplace(g_, *overlay, patches);
+            else region.emplace(g_, patches);
         } catch (const InvalidInput& e) {
             return e.what();
         }

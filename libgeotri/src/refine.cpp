@@ -269,17 +269,12 @@ private:
         SplitOptions options;
         options.propagation = &propagation_;
         options.region_fallback = region_fallback;
-        // Splits are tried on copies of G: one overlay of G serves them all until G changes (on lucy_100k, the
-        // edge splits that fall back on the patches built one for each try, half of refining's time).
-        options.overlay = overlay_of_g_ ? &*overlay_of_g_ : nullptr;
-        options.keep_overlay = &overlay_of_g_;
         return options;
     }
 
     /// G becomes `next`, a changed copy.
     void replace_g(GeodesicTriangulation&& next) {
         g_ = std::move(next);
-        overlay_of_g_.reset();
     }
 
     /// Does `split` (one of split_edge() or split_face() on the G it is given) on a copy of G, then the flips around
@@ -666,7 +661,6 @@ private:
     geodesic::ExactGeodesic propagation_;
     FlipToDelaunayOptions flip_options_;
     std::set<int> coarse_at_fine_vertex_;  ///< the vertices of T that coarse vertices sit on
-    std::optional<Overlay> overlay_of_g_;  ///< build_overlay(g_), once a split needed it
     std::vector<SurfacePoint> given_;       ///< the locations of the vertices of the G given
     struct ShortEdge {
         std::array<Eigen::Vector3d, 2> ends;

@@ -115,8 +115,6 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
         propagation->propagate({from}, propagation_options);
     }
 
-    std::optional<Overlay> built;
-    const Overlay* overlay = options.overlay;
     for (Spoke& s : spokes) {
         s.path = propagation->shortest_path(g.location(s.to));
         if (!checked) {
@@ -126,14 +124,11 @@ std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from
         std::string why = check_spoke(g, s, s.path, theta);
         if (why.empty()) continue;
         if (!options.region_fallback) return why;
-        if (!overlay) {
-            std::optional<Overlay>& kept = options.keep_overlay ? *options.keep_overlay : built;
-            kept = build_overlay(g);
-            overlay = &*kept;
-        }
         PatchRegion::Path inside;
         try {
-            inside = PatchRegion(g, *overlay, {s.patch}).shortest_path(from, g.location(s.to));
+            const PatchRegion region = options.overlay ? PatchRegion(g, *options.overlay, {s.patch})
+                                                       : PatchRegion(g, {s.patch});
+            inside = region.shortest_path(from, g.location(s.to));
         } catch (const InvalidInput& e) {
             return why + "; inside the patch: " + e.what();
         }

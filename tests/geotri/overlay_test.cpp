@@ -5,10 +5,13 @@
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
 #include <geotri/decimate.h>
+#include <geotri/edge_paths_io.h>
+#include <geotri/flip_to_delaunay.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/geodesic_triangulation.h>
 #include <geotri/overlay.h>
 #include <geotri/overlay_io.h>
+#include <geotri/patch_region.h>
 #include <geotri/trace.h>
 
 #include <geotri_test/procedural_meshes.h>
@@ -511,6 +514,92 @@ std::string read_text(const std::string& path) {
     std::stringstream s;
     s << in.rdbuf();
     return s.str();
+}
+
+// ---- Patches cut out of T alone (PatchRegion without an overlay) ---------------------------------------------
+
+/// Every patch of g, and every patch with each neighbour, cut out of T alone makes the same region mesh, to the
+/// bit, as cut out of the overlay of all of g: the same triangles in the same order, so the same propagations.
+void expect_patches_alone_as_in_the_overlay(const GeodesicTriangulation& g, const std::string& name) {
+    SCOPED_TRACE(name);
+    const Overlay whole = build_overlay(g);
+    ASSERT_TRUE(whole.valid()) << name << ": the test needs a valid G";
+    int regions = 0;
+    for (auto f : g.coarse().faces()) {
+        std::vector<std::vector<int>> sets{{f.idx()}};
+        for (auto neighbour : g.coarse().ff_range(f)) sets.push_back({f.idx(), neighbour.idx()});
+        for (const std::vector<int>& faces : sets) {
+            const PatchRegion from_whole(g, whole, faces), alone(g, faces);
+            const geodesic::Mesh& a = from_whole.mesh();
+            const geodesic::Mesh& b = alone.mesh();
+            ASSERT_EQ(b.num_vertices(), a.num_vertices()) << "faces " << faces.front() << " (" << faces.size() << ")";
+            ASSERT_EQ(b.num_faces(), a.num_faces()) << "faces " << faces.front() << " (" << faces.size() << ")";
+            for (int v = 0; v < a.num_vertices(); ++v) ASSERT_EQ(b.position(v), a.position(v));
+            for (int t = 0; t < a.num_faces(); ++t) ASSERT_EQ(b.triangle(t), a.triangle(t));
+            ++regions;
+        }
+    }
+    EXPECT_EQ(regions, 4 * static_cast<int>(g.coarse().n_faces()));
+}
+
+TEST(PatchAlone, regions_are_those_of_the_whole_overlay) {
+    {
+        auto fine = make_fine(test::icosphere(3), "icosphere");
+        expect_patches_alone_as_in_the_overlay(tetrahedron(fine, tetrahedron_vertices(fine->mesh)),
+                                               "icosphere tetrahedron");
+    }
+    for (bool irregular : {false, true}) {  // geodesics through fine vertices and along fine edges
+        auto fine = make_fine(test::cube(4, 1.0, irregular, 7), "cube");
+        std::array<SurfacePoint, 4> where;
+        const Eigen::Vector3d corners[4] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}};
+        for (int i = 0; i < 4; ++i)
+            where[i] = SurfacePoint::at_vertex(extreme_vertex(fine->mesh, corners[i] - Eigen::Vector3d(0.5, 0.5, 0.5)));
+        expect_patches_alone_as_in_the_overlay(tetrahedron(fine, where), irregular ? "irregular cube" : "cube");
+    }
+    {
+        // Coarse vertices inside fine faces and on a fine edge.
+        auto fine = make_fine(test::icosphere(3), "icosphere");
+        const auto& mesh = fine->mesh;
+        const Eigen::Vector3d d[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+        std::array<SurfacePoint, 4> where;
+        where[0] = SurfacePoint::at_vertex(extreme_vertex(mesh, d[0].normalized()));
+        where[1] = SurfacePoint::in_face(extreme_face(mesh, d[1].normalized()), {1.0 / 3, 1.0 / 3, 1.0 / 3});
+        const auto& t2 = mesh.triangle(extreme_face(mesh, d[2].normalized()));
+        where[2] = SurfacePoint::on_edge(std::min(t2[0], t2[1]), std::max(t2[0], t2[1]), 0.375);
+        where[3] = SurfacePoint::in_face(extreme_face(mesh, d[3].normalized()), {0.2, 0.3, 0.5});
+        expect_patches_alone_as_in_the_overlay(tetrahedron(fine, where), "vertices off T's vertices");
+    }
+    {
+        // A real mesh, decimated, traced in the decimation's classes and untangled: 320 faces.
+        auto fine = std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
+        DecimateOptions options;
+        options.target_faces = 320;
+        const DecimateResult decimated = decimate(*fine, options);
+        const EdgePaths paths = make_edge_paths(*fine, decimated);
+        GeodesicTriangulation g(fine, make_coarse_mesh(decimated.coarse, "bob"));
+        TraceOptions trace_options;
+        trace_options.edge_paths = &paths;
+        trace(g, trace_options);
+        flip_to_delaunay(g);
+        expect_patches_alone_as_in_the_overlay(g, "bob_small");
+    }
+}
+
+TEST(PatchAlone, a_patch_that_holds_another_coarse_vertex_is_refused) {
+    // Turned inside out, each patch is the rest of the sphere, with the fourth vertex in it. (Alone, a patch is
+    // cut out of T along its own polylines only: it is not checked against the other polylines, which in a G valid
+    // around it, as the callers need, stay outside.)
+    auto fine = make_fine(test::icosphere(3), "icosphere");
+    const GeodesicTriangulation reversed = tetrahedron(fine, tetrahedron_vertices(fine->mesh), /*reversed=*/true);
+    ASSERT_EQ(build_overlay(reversed).bad_patches.size(), 4u);
+    for (auto f : reversed.coarse().faces()) {
+        try {
+            PatchRegion(reversed, {f.idx()});
+            ADD_FAILURE() << "coarse face " << f.idx() << " was cut out";
+        } catch (const InvalidInput& e) {
+            EXPECT_NE(std::string(e.what()).find("lies in it"), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(OverlayIo, writers_hold_every_triangle_and_exact_coordinates) {

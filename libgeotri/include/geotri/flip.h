@@ -50,7 +50,8 @@ struct FlipOptions {
     /// With check_validity: when the shortest c-d geodesic leaves the two patches, try the shortest path inside
     /// them (plan_flip_in_region()).
     bool region_fallback = true;
-    /// The overlay of this same G for the fallback; built when needed if null.
+    /// The overlay of this same G for the fallback, or null: the two patches alone are then cut out of T, which
+    /// costs what they hold (PatchRegion).
     const Overlay* overlay = nullptr;
 };
 
@@ -86,6 +87,10 @@ FlipPlan plan_flip(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e, const
 /// when it stays off the region's boundary except at c and d: it is then straight everywhere, a geodesic of T
 /// (if not the shortest one). `overlay` must be build_overlay() of this same G. For a valid G.
 FlipPlan plan_flip_in_region(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e, const Overlay& overlay);
+
+/// The same, with the two patches alone cut out of T (PatchRegion): the same path, at a cost that grows with the
+/// patches rather than with T.
+FlipPlan plan_flip_in_region(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e);
 
 /// Does a flip that plan_flip() accepted on this same, unchanged G: OpenMesh's flip() on the coarse mesh, then the
 /// new polyline. Throws InvalidInput when the plan was refused or no longer fits G.

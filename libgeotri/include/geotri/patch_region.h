@@ -8,6 +8,7 @@
 #include <geotri/geodesic_triangulation.h>
 #include <geotri/overlay.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,11 @@ public:
     /// faces are disks. Throws InvalidInput when one of them is not (it is in overlay.bad_patches) or when the
     /// region is not a surface libgeodesic accepts.
     PatchRegion(const GeodesicTriangulation& g, const Overlay& overlay, const std::vector<int>& coarse_faces);
+
+    /// The same region with T cut along those faces' polylines only, where the patches lie: it costs what the
+    /// patches hold, not a pass over T as build_overlay() does (for one region of a G, or for regions of many
+    /// different Gs). Throws InvalidInput when a patch is not a disk bounded by its face's three polylines.
+    PatchRegion(const GeodesicTriangulation& g, const std::vector<int>& coarse_faces);
 
     /// The region as a mesh of its own: its vertices are overlay vertices, its faces overlay triangles.
     const geodesic::Mesh& mesh() const { return *mesh_; }
@@ -44,14 +50,17 @@ public:
     std::vector<Path> shortest_paths(const SurfacePoint& from, const std::vector<SurfacePoint>& to) const;
 
 private:
+    /// Makes the region's mesh from the triangles of `overlay` that those patches hold.
+    void cut_out(const GeodesicTriangulation& g, const Overlay& overlay, const std::vector<int>& coarse_faces);
     /// The path from the propagation's source (`from` on T) back from `end` (`to` on T, in the region).
     Path path_back(const geodesic::ExactGeodesic& propagation, const SurfacePoint& from, const SurfacePoint& end,
                    const SurfacePoint& to) const;
     /// A point of the region's mesh, back on T.
     SurfacePoint to_fine(const SurfacePoint& q) const;
 
-    const geodesic::Mesh* fine_;
-    const Overlay* overlay_;
+    const geodesic::Mesh* fine_ = nullptr;
+    std::shared_ptr<const Overlay> own_overlay_;  ///< the overlay of the patches alone, when this region made it
+    const Overlay* overlay_ = nullptr;
     std::vector<int> overlay_vertex_;  ///< per region vertex
     std::vector<int> fine_face_;       ///< per region face
     std::optional<geodesic::Mesh> mesh_;

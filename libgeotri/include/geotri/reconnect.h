@@ -33,7 +33,8 @@ struct ReconnectOptions {
     /// When the shortest geodesic between two corners leaves the polygon, try the shortest path inside the faces'
     /// patches, which needs the overlay.
     bool region_fallback = true;
-    /// The overlay of this same G for the fallback; built when needed if null.
+    /// The overlay of this same G for the fallback, or null: the faces' patches alone are then cut out of T, which
+    /// costs what they hold (PatchRegion).
     const Overlay* overlay = nullptr;
 };
 

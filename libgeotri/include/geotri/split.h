@@ -22,11 +22,9 @@ struct SplitOptions {
     /// When the shortest geodesic from the new vertex leaves the patch that it must run in, try the shortest path
     /// inside that patch (PatchRegion), which needs the overlay.
     bool region_fallback = true;
-    /// The overlay of this same G for the fallback; built when needed if null.
+    /// The overlay of this same G for the fallback, or null: the patch alone is then cut out of T, which costs
+    /// what the patch holds (PatchRegion).
     const Overlay* overlay = nullptr;
-    /// When the overlay is built here, it is kept in this, for the caller's later splits of the same G (a caller
-    /// that tries several splits on copies of one G builds it once).
-    std::optional<Overlay>* keep_overlay = nullptr;
     /// `propagation` already holds a goal-directed propagation from the split point (in canonical form) whose stop
     /// points include every coarse vertex that the split joins it to: the split uses it instead of propagating
     /// again. For a caller that tries one point in several patches.
