@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,8 @@ std::string to_spec(const SurfacePoint& p) {
     }
     return {};
 }
+
+std::ostream& operator<<(std::ostream& out, const SurfacePoint& point) { return out << to_spec(point); }
 
 SurfacePoint parse_spec(const std::string& spec) {
     std::vector<std::string> fields = split(spec, ':');

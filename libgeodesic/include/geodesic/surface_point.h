@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 
 namespace geotri::geodesic {
@@ -35,6 +36,9 @@ struct SurfacePoint {
 
 /// The command-line spelling: `v:I`, `e:I,J:T` or `f:I:B0,B1,B2`, with every double printed so it reads back exactly.
 std::string to_spec(const SurfacePoint& point);
+
+/// Writes to_spec(point) (so that a test that compares points or polylines names them when it fails).
+std::ostream& operator<<(std::ostream& out, const SurfacePoint& point);
 
 /// Parses the spelling of to_spec(). Throws InvalidInput with a message naming the problem.
 SurfacePoint parse_spec(const std::string& spec);
