@@ -2,7 +2,6 @@
 #include <geodesic/exact_geodesic.h>
 #include <geotri/collapse.h>
 #include <geotri/flip_to_delaunay.h>
-#include <geotri/overlay.h>
 #include <geotri/relocate.h>
 #include <geotri/split.h>
 
@@ -72,9 +71,9 @@ struct Evaluation {
 
 /// Improve, in sweeps. Each sweep evaluates (in parallel: G is only read) every edge whose two faces changed since
 /// its last evaluation; when it found no ordinary flip, it evaluates the flips whose shortest geodesic left the two
-/// patches once more with the shortest path inside them (one overlay for all of them); it does the flips it found
-/// in edge index order, skipping those whose faces an earlier flip of the same sweep changed (they are evaluated
-/// again in the next sweep). The result does not depend on the thread count.
+/// patches once more with the shortest path inside them (the two patches cut out of T alone); it does the flips it
+/// found in edge index order, skipping those whose faces an earlier flip of the same sweep changed (they are
+/// evaluated again in the next sweep). The result does not depend on the thread count.
 class Improver {
 public:
     /// Starts with every edge to evaluate, or only `edges` when given.
@@ -213,7 +212,7 @@ private:
         }
         FlipOptions flip_options;
         flip_options.propagation = &propagation;
-        flip_options.region_fallback = false;  // done for all such edges at once, with one overlay
+        flip_options.region_fallback = false;  // done for all such edges after the ordinary flips (sweep())
         result.plan = plan_flip(g_, e, flip_options);
         result.planned = true;
         if (!result.plan.accepted()) {
@@ -275,12 +274,13 @@ void settle_around(GeodesicTriangulation& g, OpenMesh::VertexHandle v, geodesic:
     // Does `operation` on a copy of G and keeps it when it lowers the count.
     auto keep_if_lower = [&](const std::function<bool(GeodesicTriangulation&)>& operation) {
         GeodesicTriangulation trial = g;
+        int after = 0;
         try {
             if (!operation(trial)) return false;
+            after = count_violations(trial);
         } catch (const InvalidInput&) {
-            return false;  // G is unfit for it around there (it is not valid)
+            return false;  // G is unfit for it around there (it is not valid): this step fails, not the split
         }
-        const int after = count_violations(trial);
         if (after >= count) return false;
         g = std::move(trial);
         count = after;

@@ -1,9 +1,10 @@
 #include <geodesic/errors.h>
 #include <geotri/overlay.h>
+#include <geotri/tangent_angles.h>
 
 #include "patch_overlay.h"
 
-#include <Eigen/Geometry>
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -928,7 +929,9 @@ Overlay build_overlay(const GeodesicTriangulation& g) {
 
 namespace geotri::detail {
 
-Overlay build_patch_overlay(const GeodesicTriangulation& g, const std::vector<int>& coarse_faces) {
+Overlay build_patch_overlay(const GeodesicTriangulation& g, std::vector<int> coarse_faces) {
+    std::sort(coarse_faces.begin(), coarse_faces.end());
+    coarse_faces.erase(std::unique(coarse_faces.begin(), coarse_faces.end()), coarse_faces.end());
     const Mesh& mesh = g.fine().mesh;
     const CoarseMesh& coarse = g.coarse();
     const int num_fine_vertices = mesh.num_vertices();
@@ -1005,8 +1008,20 @@ Overlay build_patch_overlay(const GeodesicTriangulation& g, const std::vector<in
         add_triangle(t);
         return t;
     };
+    // Whether a point of fine face `face` (barycentric `b`) lies in triangle t, a piece of that face.
+    auto holds = [&](int t, int face, const std::array<double, 3>& b) {
+        Eigen::Matrix3d corners;
+        for (int i = 0; i < 3; ++i) {
+            const int v = cut.triangles[static_cast<std::size_t>(t)][static_cast<std::size_t>(i)];
+            const SurfacePoint corner = v < num_fine_vertices ? SurfacePoint::at_vertex(v) : table.point(v);
+            const std::array<double, 3> c = barycentric_in(mesh, face, corner);
+            corners.col(i) = Eigen::Vector3d(c[0], c[1], c[2]);
+        }
+        const Eigen::FullPivLU<Eigen::Matrix3d> lu(corners);
+        return lu.isInvertible() && lu.solve(Eigen::Vector3d(b[0], b[1], b[2])).minCoeff() >= -1e-12;
+    };
     for (int f : coarse_faces) {
-        std::vector<int> stack;
+        std::vector<int> seeds;
         std::vector<std::uint64_t> own;  // this face's cut edges
         for (auto h : coarse.fh_range(OpenMesh::FaceHandle(f))) {
             const std::vector<int>& c = cuts.chain[static_cast<std::size_t>(coarse.edge_handle(h).idx())];
@@ -1020,20 +1035,20 @@ Overlay build_patch_overlay(const GeodesicTriangulation& g, const std::vector<in
                 own.push_back(undirected_key(a, b));
                 const int t = triangle_left_of(a, b);
                 if (t < 0) throw not_a_disk(f, "nothing on the left of a path");
-                int& owner = patch[static_cast<std::size_t>(t)];
-                if (owner == f) continue;
-                if (owner >= 0) throw not_a_disk(f, "it runs into another patch");
-                owner = f;
-                stack.push_back(t);
+                seeds.push_back(t);
             }
         }
         std::sort(own.begin(), own.end());
-        std::size_t boundary = 0, triangles = 0;
+        // From one seed: a patch is one piece across edges, and must reach every other seed.
+        std::vector<int> stack{seeds.front()}, region;
+        if (patch[static_cast<std::size_t>(seeds.front())] >= 0) throw not_a_disk(f, "it runs into another patch");
+        patch[static_cast<std::size_t>(seeds.front())] = f;
+        std::size_t boundary = 0;
         std::vector<int> vertices;
         while (!stack.empty()) {
             const int t = stack.back();
             stack.pop_back();
-            ++triangles;
+            region.push_back(t);
             const std::array<int, 3> tri = cut.triangles[static_cast<std::size_t>(t)];
             for (int k = 0; k < 3; ++k) {
                 const int a = tri[k], b = tri[(k + 1) % 3];
@@ -1053,19 +1068,29 @@ Overlay build_patch_overlay(const GeodesicTriangulation& g, const std::vector<in
                 stack.push_back(next);
             }
         }
-        // Bounded by its paths, each seen once from inside, and a disk: Euler characteristic 1.
+        for (int t : seeds)
+            if (patch[static_cast<std::size_t>(t)] != f) throw not_a_disk(f, "its paths bound more than one piece");
+        // Connected, bounded by its paths, each met once from inside, and of Euler characteristic 1: a disk.
+        const std::size_t triangles = region.size();
         std::sort(vertices.begin(), vertices.end());
         vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
         if (boundary != own.size() || (3 * triangles + boundary) % 2 != 0 ||
             vertices.size() + triangles != (3 * triangles + boundary) / 2 + 1)
             throw not_a_disk(f, "its triangles do not make a disk bounded by its paths");
+        // No other coarse vertex: at a vertex or on an edge of T it is a corner of the triangles; inside a fine face
+        // it may be a point that no cut reaches, inside a triangle.
         std::vector<int> corners;
         for (auto v : coarse.fv_range(OpenMesh::FaceHandle(f))) corners.push_back(location_id[v.idx()]);
         for (auto v : coarse.vertices()) {
             const int id = location_id[v.idx()];
-            if (std::find(corners.begin(), corners.end(), id) == corners.end() &&
-                std::binary_search(vertices.begin(), vertices.end(), id))
-                throw not_a_disk(f, "coarse vertex " + std::to_string(v.idx()) + " lies in it");
+            if (std::find(corners.begin(), corners.end(), id) != corners.end()) continue;
+            bool inside = std::binary_search(vertices.begin(), vertices.end(), id);
+            if (!inside && id >= num_fine_vertices && table.point(id).kind == PointKind::face) {
+                const SurfacePoint& p = table.point(id);
+                for (int t : region)
+                    if (cut.fine_face[static_cast<std::size_t>(t)] == p.face && holds(t, p.face, p.bary)) inside = true;
+            }
+            if (inside) throw not_a_disk(f, "coarse vertex " + std::to_string(v.idx()) + " lies in it");
         }
     }
 
@@ -1082,10 +1107,12 @@ Overlay build_patch_overlay(const GeodesicTriangulation& g, const std::vector<in
         std::array<int, 3> tri = cut.triangles[static_cast<std::size_t>(t)];
         for (int& v : tri) {
             const auto [it, inserted] = renumbered.emplace(v, static_cast<int>(out.positions.size()));
-            if (inserted) {
-                const bool fine_vertex = v < num_fine_vertices;
-                out.positions.push_back(fine_vertex ? mesh.position(v) : cut.positions[static_cast<std::size_t>(v - num_fine_vertices)]);
-                out.points.push_back(fine_vertex ? SurfacePoint::at_vertex(v) : cut.points[static_cast<std::size_t>(v - num_fine_vertices)]);
+            if (inserted && v < num_fine_vertices) {
+                out.positions.push_back(mesh.position(v));
+                out.points.push_back(SurfacePoint::at_vertex(v));
+            } else if (inserted) {
+                out.positions.push_back(cut.positions[static_cast<std::size_t>(v - num_fine_vertices)]);
+                out.points.push_back(cut.points[static_cast<std::size_t>(v - num_fine_vertices)]);
             }
             v = it->second;
         }

@@ -37,7 +37,8 @@ PatchRegion::PatchRegion(const GeodesicTriangulation& g, const std::vector<int>&
     cut_out(g, *own_overlay_, coarse_faces);
 }
 
-void PatchRegion::cut_out(const GeodesicTriangulation& g, const Overlay& overlay, const std::vector<int>& coarse_faces) {
+void PatchRegion::cut_out(const GeodesicTriangulation& g, const Overlay& overlay,
+                          const std::vector<int>& coarse_faces) {
     fine_ = &g.fine().mesh;
     overlay_ = &overlay;
     for (int f : coarse_faces)

@@ -98,7 +98,7 @@ public:
     /// Fills the angular positions of the sides and of every usable diagonal at each corner. Each diagonal is the
     /// shortest geodesic on T when that one stays inside the polygon (it leaves and reaches its ends inside the
     /// polygon's corners and meets no side), else, with `region_fallback`, the shortest path inside the faces'
-    /// patches (built from `overlay`, or from an overlay built here when null). Empty, or why not.
+    /// patches (cut out of `overlay`, or of T alone when it is null). Empty, or why not.
     std::string measure(geodesic::ExactGeodesic& propagation, int threads, bool region_fallback,
                         const Overlay* overlay) {
         const CoarseMesh& coarse = g_.coarse();

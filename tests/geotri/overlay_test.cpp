@@ -571,7 +571,8 @@ TEST(PatchAlone, regions_are_those_of_the_whole_overlay) {
     }
     {
         // A real mesh, decimated, traced in the decimation's classes and untangled: 320 faces.
-        auto fine = std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
+        auto fine =
+            std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
         DecimateOptions options;
         options.target_faces = 320;
         const DecimateResult decimated = decimate(*fine, options);
@@ -586,20 +587,74 @@ TEST(PatchAlone, regions_are_those_of_the_whole_overlay) {
 }
 
 TEST(PatchAlone, a_patch_that_holds_another_coarse_vertex_is_refused) {
-    // Turned inside out, each patch is the rest of the sphere, with the fourth vertex in it. (Alone, a patch is
-    // cut out of T along its own polylines only: it is not checked against the other polylines, which in a G valid
-    // around it, as the callers need, stay outside.)
+    // Turned inside out, each patch is the rest of the sphere, with the fourth vertex in it: at a vertex of T, on
+    // an edge, or inside a fine face that no cut reaches. (Alone, a patch is cut out of T along its own polylines
+    // only: it is not checked against the other polylines, which in a G valid around it, as the callers need, stay
+    // outside.)
     auto fine = make_fine(test::icosphere(3), "icosphere");
-    const GeodesicTriangulation reversed = tetrahedron(fine, tetrahedron_vertices(fine->mesh), /*reversed=*/true);
-    ASSERT_EQ(build_overlay(reversed).bad_patches.size(), 4u);
-    for (auto f : reversed.coarse().faces()) {
-        try {
-            PatchRegion(reversed, {f.idx()});
-            ADD_FAILURE() << "coarse face " << f.idx() << " was cut out";
-        } catch (const InvalidInput& e) {
-            EXPECT_NE(std::string(e.what()).find("lies in it"), std::string::npos) << e.what();
+    const auto& mesh = fine->mesh;
+    const Eigen::Vector3d d[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    std::array<SurfacePoint, 4> off_vertices;
+    off_vertices[0] = SurfacePoint::at_vertex(extreme_vertex(mesh, d[0].normalized()));
+    off_vertices[1] = SurfacePoint::in_face(extreme_face(mesh, d[1].normalized()), {1.0 / 3, 1.0 / 3, 1.0 / 3});
+    const auto& t2 = mesh.triangle(extreme_face(mesh, d[2].normalized()));
+    off_vertices[2] = SurfacePoint::on_edge(std::min(t2[0], t2[1]), std::max(t2[0], t2[1]), 0.375);
+    off_vertices[3] = SurfacePoint::in_face(extreme_face(mesh, d[3].normalized()), {0.2, 0.3, 0.5});
+    for (const auto& where : {tetrahedron_vertices(mesh), off_vertices}) {
+        const GeodesicTriangulation reversed = tetrahedron(fine, where, /*reversed=*/true);
+        ASSERT_EQ(build_overlay(reversed).bad_patches.size(), 4u);
+        for (auto f : reversed.coarse().faces()) {
+            try {
+                PatchRegion(reversed, {f.idx()});
+                ADD_FAILURE() << "coarse face " << f.idx() << " was cut out";
+            } catch (const InvalidInput& e) {
+                EXPECT_NE(std::string(e.what()).find("lies in it"), std::string::npos) << e.what();
+            }
         }
     }
+}
+
+TEST(PatchAlone, a_patch_pinched_at_a_vertex_of_t_is_refused) {
+    // On the cube's tetrahedron, the path from corner (1,0,1) to (0,0,0) is rerouted through (0.5,0.5,0), a vertex
+    // of T on the path from (0,0,0) to (1,1,0): the patch of their face becomes two disks that touch there.
+    auto fine = make_fine(test::cube(4, 1.0, false, 7), "cube");
+    const auto& mesh = fine->mesh;
+    auto vertex_near = [&](const Eigen::Vector3d& x) {
+        return SurfacePoint::at_vertex(extreme_vertex(mesh, x - Eigen::Vector3d(0.5, 0.5, 0.5)));
+    };
+    auto vertex_at = [&](const Eigen::Vector3d& x) {
+        for (int v = 0; v < mesh.num_vertices(); ++v)
+            if ((mesh.position(v) - x).norm() < 1e-12) return SurfacePoint::at_vertex(v);
+        throw std::logic_error("no vertex of T there");
+    };
+    const std::array<SurfacePoint, 4> where{vertex_near({0, 0, 0}), vertex_near({1, 1, 0}), vertex_near({1, 0, 1}),
+                                           vertex_near({0, 1, 1})};
+    GeodesicTriangulation g = tetrahedron(fine, where);
+    const SurfacePoint touch = vertex_at({0.5, 0.5, 0});
+    const CoarseMesh& coarse = g.coarse();
+    OpenMesh::HalfedgeHandle rerouted;  // the halfedge from where[2] to where[0] in the face with where[1]
+    for (auto h : coarse.halfedges())
+        if (g.location(coarse.from_vertex_handle(h)) == where[2] &&
+            g.location(coarse.to_vertex_handle(h)) == where[0] && !coarse.is_boundary(h) &&
+            g.location(coarse.to_vertex_handle(coarse.next_halfedge_handle(h))) == where[1])
+            rerouted = h;
+    ASSERT_TRUE(rerouted.is_valid());
+    const Polyline onward = g.path(coarse.next_halfedge_handle(rerouted));
+    ASSERT_NE(std::find(onward.begin(), onward.end(), touch), onward.end()) << "the path (0,0,0)-(1,1,0) moved";
+    Polyline path;
+    const std::array<SurfacePoint, 5> stops{where[2], vertex_at({0.75, 0, 0}), touch, vertex_at({0.25, 0, 0}), where[0]};
+    geodesic::ExactGeodesic geo(mesh);
+    for (std::size_t k = 0; k + 1 < stops.size(); ++k) {
+        geo.propagate({stops[k]});
+        Polyline part = geo.shortest_path(stops[k + 1]);
+        if (part.front() != stops[k]) std::reverse(part.begin(), part.end());
+        path.insert(path.end(), part.begin() + (path.empty() ? 0 : 1), part.end());
+    }
+    g.set_path(rerouted, path);
+    const int face = coarse.face_handle(rerouted).idx();
+    const std::vector<int> bad = build_overlay(g).bad_patches;
+    ASSERT_NE(std::find(bad.begin(), bad.end(), face), bad.end());
+    EXPECT_THROW(PatchRegion(g, {face}), InvalidInput);
 }
 
 TEST(OverlayIo, writers_hold_every_triangle_and_exact_coordinates) {

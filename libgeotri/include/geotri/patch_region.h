@@ -28,7 +28,9 @@ public:
 
     /// The same region with T cut along those faces' polylines only, where the patches lie: it costs what the
     /// patches hold, not a pass over T as build_overlay() does (for one region of a G, or for regions of many
-    /// different Gs). Throws InvalidInput when a patch is not a disk bounded by its face's three polylines.
+    /// different Gs). For a G valid around those faces: the other polylines are not cut, so one that runs into a
+    /// patch goes unseen. Throws InvalidInput when a patch is not one piece of Euler characteristic 1 bounded by
+    /// its face's three polylines, or holds another coarse vertex.
     PatchRegion(const GeodesicTriangulation& g, const std::vector<int>& coarse_faces);
 
     /// The region as a mesh of its own: its vertices are overlay vertices, its faces overlay triangles.

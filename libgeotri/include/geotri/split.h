@@ -5,7 +5,6 @@
 
 #include <geotri/geodesic_triangulation.h>
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +19,7 @@ struct SplitOptions {
     /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
     geodesic::ExactGeodesic* propagation = nullptr;
     /// When the shortest geodesic from the new vertex leaves the patch that it must run in, try the shortest path
-    /// inside that patch (PatchRegion), which needs the overlay.
+    /// inside that patch (PatchRegion).
     bool region_fallback = true;
     /// The overlay of this same G for the fallback, or null: the patch alone is then cut out of T, which costs
     /// what the patch holds (PatchRegion).
