@@ -242,6 +242,29 @@ std::array<SurfacePoint, 4> tetrahedron_vertices(const geodesic::Mesh& mesh) {
     return where;
 }
 
+/// The directions of tetrahedron_vertices(), with the vertices off T's vertices: inside two fine faces and on an
+/// edge of T.
+std::array<SurfacePoint, 4> tetrahedron_off_vertices(const geodesic::Mesh& mesh) {
+    const Eigen::Vector3d d[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    std::array<SurfacePoint, 4> where;
+    where[0] = SurfacePoint::at_vertex(extreme_vertex(mesh, d[0].normalized()));
+    where[1] = SurfacePoint::in_face(extreme_face(mesh, d[1].normalized()), {1.0 / 3, 1.0 / 3, 1.0 / 3});
+    const auto& t2 = mesh.triangle(extreme_face(mesh, d[2].normalized()));
+    where[2] = SurfacePoint::on_edge(std::min(t2[0], t2[1]), std::max(t2[0], t2[1]), 0.375);
+    where[3] = SurfacePoint::in_face(extreme_face(mesh, d[3].normalized()), {0.2, 0.3, 0.5});
+    return where;
+}
+
+/// Alternate corners of a unit cube mesh: (0,0,0), (1,1,0), (1,0,1), (0,1,1). The tetrahedron's edges are the six
+/// face diagonals.
+std::array<SurfacePoint, 4> cube_tetrahedron_vertices(const geodesic::Mesh& mesh) {
+    std::array<SurfacePoint, 4> where;
+    const Eigen::Vector3d corners[4] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}};
+    for (int i = 0; i < 4; ++i)
+        where[i] = SurfacePoint::at_vertex(extreme_vertex(mesh, corners[i] - Eigen::Vector3d(0.5, 0.5, 0.5)));
+    return where;
+}
+
 TEST(Overlay, icosphere_tetrahedron_gives_four_disks_of_total_area) {
     auto fine = make_fine(test::icosphere(3), "icosphere");
     GeodesicTriangulation g = tetrahedron(fine, tetrahedron_vertices(fine->mesh));
@@ -258,11 +281,7 @@ TEST(Overlay, cube_tetrahedron_cuts_through_fine_vertices_and_along_fine_edges) 
     for (bool irregular : {false, true}) {
         auto fine = make_fine(test::cube(4, 1.0, irregular, 7), "cube");
         const auto& mesh = fine->mesh;
-        std::array<SurfacePoint, 4> where;
-        const Eigen::Vector3d corners[4] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}};
-        for (int i = 0; i < 4; ++i)
-            where[i] = SurfacePoint::at_vertex(extreme_vertex(mesh, (corners[i] - Eigen::Vector3d(0.5, 0.5, 0.5))));
-        GeodesicTriangulation g = tetrahedron(fine, where);
+        GeodesicTriangulation g = tetrahedron(fine, cube_tetrahedron_vertices(mesh));
         int interior_vertices = 0, along_edges = 0;
         for (auto e : g.coarse().edges()) {
             const Polyline& line = g.polyline(e);
@@ -283,15 +302,7 @@ TEST(Overlay, cube_tetrahedron_cuts_through_fine_vertices_and_along_fine_edges) 
 
 TEST(Overlay, coarse_vertices_inside_faces_and_on_edges) {
     auto fine = make_fine(test::icosphere(3), "icosphere");
-    const auto& mesh = fine->mesh;
-    const Eigen::Vector3d d[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-    std::array<SurfacePoint, 4> where;
-    where[0] = SurfacePoint::at_vertex(extreme_vertex(mesh, d[0].normalized()));
-    where[1] = SurfacePoint::in_face(extreme_face(mesh, d[1].normalized()), {1.0 / 3, 1.0 / 3, 1.0 / 3});
-    const auto& t2 = mesh.triangle(extreme_face(mesh, d[2].normalized()));
-    where[2] = SurfacePoint::on_edge(std::min(t2[0], t2[1]), std::max(t2[0], t2[1]), 0.375);
-    where[3] = SurfacePoint::in_face(extreme_face(mesh, d[3].normalized()), {0.2, 0.3, 0.5});
-    GeodesicTriangulation g = tetrahedron(fine, where);
+    GeodesicTriangulation g = tetrahedron(fine, tetrahedron_off_vertices(fine->mesh));
     const Overlay o = build_overlay(g);
     expect_valid_overlay(o, g);
     int face_points = 0, edge_points = 0;
@@ -381,10 +392,7 @@ TEST(Overlay, detour_crossing_at_cut_vertices_is_reported) {
     // but the patches are not disks bounded by their own three polylines.
     auto fine = make_fine(test::cube(4, 1.0, true, 3), "cube");
     const auto& mesh = fine->mesh;
-    std::array<SurfacePoint, 4> where;
-    const Eigen::Vector3d corners[4] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}};
-    for (int i = 0; i < 4; ++i)
-        where[i] = SurfacePoint::at_vertex(extreme_vertex(mesh, corners[i] - Eigen::Vector3d(0.5, 0.5, 0.5)));
+    const std::array<SurfacePoint, 4> where = cube_tetrahedron_vertices(mesh);
     GeodesicTriangulation g = tetrahedron(fine, where);
     ASSERT_TRUE(build_overlay(g).valid());
     // Through the far corner (1,1,1), which lies in the patch of the opposite face.
@@ -550,24 +558,13 @@ TEST(PatchAlone, regions_are_those_of_the_whole_overlay) {
     }
     for (bool irregular : {false, true}) {  // geodesics through fine vertices and along fine edges
         auto fine = make_fine(test::cube(4, 1.0, irregular, 7), "cube");
-        std::array<SurfacePoint, 4> where;
-        const Eigen::Vector3d corners[4] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}};
-        for (int i = 0; i < 4; ++i)
-            where[i] = SurfacePoint::at_vertex(extreme_vertex(fine->mesh, corners[i] - Eigen::Vector3d(0.5, 0.5, 0.5)));
-        expect_patches_alone_as_in_the_overlay(tetrahedron(fine, where), irregular ? "irregular cube" : "cube");
+        expect_patches_alone_as_in_the_overlay(tetrahedron(fine, cube_tetrahedron_vertices(fine->mesh)),
+                                               irregular ? "irregular cube" : "cube");
     }
     {
-        // Coarse vertices inside fine faces and on a fine edge.
         auto fine = make_fine(test::icosphere(3), "icosphere");
-        const auto& mesh = fine->mesh;
-        const Eigen::Vector3d d[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-        std::array<SurfacePoint, 4> where;
-        where[0] = SurfacePoint::at_vertex(extreme_vertex(mesh, d[0].normalized()));
-        where[1] = SurfacePoint::in_face(extreme_face(mesh, d[1].normalized()), {1.0 / 3, 1.0 / 3, 1.0 / 3});
-        const auto& t2 = mesh.triangle(extreme_face(mesh, d[2].normalized()));
-        where[2] = SurfacePoint::on_edge(std::min(t2[0], t2[1]), std::max(t2[0], t2[1]), 0.375);
-        where[3] = SurfacePoint::in_face(extreme_face(mesh, d[3].normalized()), {0.2, 0.3, 0.5});
-        expect_patches_alone_as_in_the_overlay(tetrahedron(fine, where), "vertices off T's vertices");
+        expect_patches_alone_as_in_the_overlay(tetrahedron(fine, tetrahedron_off_vertices(fine->mesh)),
+                                               "vertices inside fine faces and on an edge");
     }
     {
         // A real mesh, decimated, traced in the decimation's classes and untangled: 320 faces.
@@ -592,15 +589,7 @@ TEST(PatchAlone, a_patch_that_holds_another_coarse_vertex_is_refused) {
     // only: it is not checked against the other polylines, which in a G valid around it, as the callers need, stay
     // outside.)
     auto fine = make_fine(test::icosphere(3), "icosphere");
-    const auto& mesh = fine->mesh;
-    const Eigen::Vector3d d[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-    std::array<SurfacePoint, 4> off_vertices;
-    off_vertices[0] = SurfacePoint::at_vertex(extreme_vertex(mesh, d[0].normalized()));
-    off_vertices[1] = SurfacePoint::in_face(extreme_face(mesh, d[1].normalized()), {1.0 / 3, 1.0 / 3, 1.0 / 3});
-    const auto& t2 = mesh.triangle(extreme_face(mesh, d[2].normalized()));
-    off_vertices[2] = SurfacePoint::on_edge(std::min(t2[0], t2[1]), std::max(t2[0], t2[1]), 0.375);
-    off_vertices[3] = SurfacePoint::in_face(extreme_face(mesh, d[3].normalized()), {0.2, 0.3, 0.5});
-    for (const auto& where : {tetrahedron_vertices(mesh), off_vertices}) {
+    for (const auto& where : {tetrahedron_vertices(fine->mesh), tetrahedron_off_vertices(fine->mesh)}) {
         const GeodesicTriangulation reversed = tetrahedron(fine, where, /*reversed=*/true);
         ASSERT_EQ(build_overlay(reversed).bad_patches.size(), 4u);
         for (auto f : reversed.coarse().faces()) {
@@ -619,16 +608,12 @@ TEST(PatchAlone, a_patch_pinched_at_a_vertex_of_t_is_refused) {
     // of T on the path from (0,0,0) to (1,1,0): the patch of their face becomes two disks that touch there.
     auto fine = make_fine(test::cube(4, 1.0, false, 7), "cube");
     const auto& mesh = fine->mesh;
-    auto vertex_near = [&](const Eigen::Vector3d& x) {
-        return SurfacePoint::at_vertex(extreme_vertex(mesh, x - Eigen::Vector3d(0.5, 0.5, 0.5)));
-    };
     auto vertex_at = [&](const Eigen::Vector3d& x) {
         for (int v = 0; v < mesh.num_vertices(); ++v)
             if ((mesh.position(v) - x).norm() < 1e-12) return SurfacePoint::at_vertex(v);
         throw std::logic_error("no vertex of T there");
     };
-    const std::array<SurfacePoint, 4> where{vertex_near({0, 0, 0}), vertex_near({1, 1, 0}), vertex_near({1, 0, 1}),
-                                           vertex_near({0, 1, 1})};
+    const std::array<SurfacePoint, 4> where = cube_tetrahedron_vertices(mesh);
     GeodesicTriangulation g = tetrahedron(fine, where);
     const SurfacePoint touch = vertex_at({0.5, 0.5, 0});
     const CoarseMesh& coarse = g.coarse();
