@@ -118,8 +118,9 @@ public:
         for (std::size_t k = 0; k < found.size(); ++k)
             if (found[k].wants_region) again.push_back(k);
         // While ordinary flips go on, the flips that want the region fallback wait for a sweep without them
-        // (evaluated again then): ordinary flips first. (This once let one overlay of all of T serve them all; each
-        // now cuts its two patches alone out of T.)
+        // (evaluated again then): ordinary flips first. This once let one overlay of all of T serve them all; each
+        // now cuts its two patches alone out of T, but trying them at once ends lower after flipping on footbones
+        // (2.9 -> 1.9 degrees), u (2.2 -> 0.1) and bunny_closed_cgal (5.4 -> 4.6).
         const bool ordinary = std::any_of(found.begin(), found.end(), [](const Evaluation& x) { return x.flip; });
         if (ordinary) {
             for (std::size_t k : again) {
