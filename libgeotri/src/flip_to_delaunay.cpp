@@ -260,17 +260,20 @@ using CountViolations = std::function<int(const GeodesicTriangulation&)>;
 /// At most this many operations settle a split's new vertex (settle_around()).
 constexpr int k_max_settle_steps = 8;
 
-/// Settles the new vertex v of a split that untangling tries: while one of these lowers G's violations of conditions
-/// 1-3, does the first that does (v's split and these are one untangling move), at most k_max_settle_steps times:
+/// Settles the new vertex v of `split`, which untangling tries on g: while one of these lowers G's violations of
+/// conditions 1-3, does the first that does (v's split and these are one untangling move), at most
+/// k_max_settle_steps times:
 /// a flip of an edge of the stars or links of v and the vertices added here, or a fork split at them or at their
 /// neighbours. A split's new geodesics often run through a vertex of G or along one of its geodesics, which such
 /// an operation then mends, and the split lowers the count only with it: on femur_cgal, a fork split at coarse
 /// vertex 6 takes the count from 9 to 12 and a flip after it to 7; on 42400-IDGH, one at coarse vertex 48 leaves
 /// it at 6 with a new fork at a neighbour, whose split takes it to 4.
-void settle_around(GeodesicTriangulation& g, OpenMesh::VertexHandle v, geodesic::ExactGeodesic& propagation,
-                   const CountViolations& count_violations) {
+/// Returns the untangling moves made: 0 when the split was not done, else 1.
+int settle_around(GeodesicTriangulation& g, const SplitResult& split, geodesic::ExactGeodesic& propagation,
+                  const CountViolations& count_violations) {
+    if (!split.done) return 0;
     const CoarseMesh& coarse = g.coarse();
-    std::vector<OpenMesh::VertexHandle> added{v};
+    std::vector<OpenMesh::VertexHandle> added{split.vertex};
     int count = count_violations(g);
     // Does `operation` on a copy of G and keeps it when it lowers the count.
     auto keep_if_lower = [&](const std::function<bool(GeodesicTriangulation&)>& operation) {
@@ -325,6 +328,7 @@ void settle_around(GeodesicTriangulation& g, OpenMesh::VertexHandle v, geodesic:
             }
         if (!kept) break;
     }
+    return 1;
 }
 
 /// The places where the violations of condition 3 say that two geodesics meet at a vertex of T that is inside
@@ -554,9 +558,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                 auto run = [fork, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                                  const CountViolations& count) {
                     const SplitResult split = split_fork(trial, fork, split_options(propagation));
-                    if (!split.done) return 0;
-                    settle_around(trial, split.vertex, propagation, count);
-                    return 1;
+                    return settle_around(trial, split, propagation, count);
                 };
                 moves.push_back({run, {k_fork_split, index, g.coarse().to_vertex_handle(fork.first).idx()}});
             }
@@ -599,9 +601,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                 SplitOptions unchecked = split_options(propagation);
                 unchecked.checked = false;
                 const SplitResult split = split_edge_at_point(trial, e, index, unchecked);
-                if (!split.done) return 0;
-                settle_around(trial, split.vertex, propagation, count);
-                return 1;
+                return settle_around(trial, split, propagation, count);
             };
             moves.push_back({run, {k_meeting_split, e.idx(), static_cast<int>(index)}});
         }

@@ -664,6 +664,36 @@ std::vector<std::vector<int>> polyline_ids(const GeodesicTriangulation& g, const
     return ids;
 }
 
+/// The fine faces that the cut touches: those of its chords, of its face points and on both sides of every fine
+/// edge with a point on it. Sorted, without repeats.
+std::vector<int> touched_faces(const Mesh& mesh, const Cuts& cuts, const PointTable& table) {
+    std::vector<int> touched;
+    for (const Chord& c : cuts.chords) touched.push_back(c.face);
+    for (const auto& [f, id] : table.face_points) touched.push_back(f);
+    for (const auto& e : table.edges)
+        for (int h : {mesh.find_halfedge(e.v0, e.v1), mesh.find_halfedge(e.v1, e.v0)})
+            if (h >= 0) touched.push_back(Mesh::face_of(h));
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    return touched;
+}
+
+/// Cuts fine face f along its chords and around its face points. Faces must come in increasing order: the
+/// cursors walk the chords and the face points (both sorted by face) once.
+void cut_face(FaceCutter& cutter, int f, const Cuts& cuts, const PointTable& table, std::size_t& next_chord,
+              std::size_t& next_inside, std::vector<char>& broken) {
+    while (next_chord < cuts.chords.size() && cuts.chords[next_chord].face < f) ++next_chord;
+    std::size_t chord_end = next_chord;
+    while (chord_end < cuts.chords.size() && cuts.chords[chord_end].face == f) ++chord_end;
+    while (next_inside < table.face_points.size() && table.face_points[next_inside].first < f) ++next_inside;
+    std::size_t inside_end = next_inside;
+    while (inside_end < table.face_points.size() && table.face_points[inside_end].first == f) ++inside_end;
+    cutter.cut(f, cuts.chords.data() + next_chord, cuts.chords.data() + chord_end,
+               table.face_points.data() + next_inside, table.face_points.data() + inside_end, broken);
+    next_chord = chord_end;
+    next_inside = inside_end;
+}
+
 /// Topology of each region, as a surface of its own (cut open along the polylines).
 struct RegionShape {
     int triangles = 0;
@@ -707,30 +737,18 @@ Overlay build_overlay(const GeodesicTriangulation& g) {
     // 3. Triangulate: untouched fine faces as they are, the others cut along their chords.
     const int nf = mesh.num_faces();
     std::vector<char> touched(nf, 0);
-    for (const Chord& c : chords) touched[c.face] = 1;
-    for (const auto& [f, id] : table.face_points) touched[f] = 1;
-    for (const auto& e : table.edges) {
-        for (int h : {mesh.find_halfedge(e.v0, e.v1), mesh.find_halfedge(e.v1, e.v0)})
-            if (h >= 0) touched[Mesh::face_of(h)] = 1;
-    }
+    for (int f : touched_faces(mesh, cuts, table)) touched[f] = 1;
     out.triangles.reserve(nf + 4 * chords.size());
     out.fine_face.reserve(out.triangles.capacity());
     FaceCutter cutter(mesh, table, out);
     std::size_t next_chord = 0, next_inside = 0;
     for (int f = 0; f < nf; ++f) {
-        if (!touched[f]) {
+        if (touched[f]) {
+            cut_face(cutter, f, cuts, table, next_chord, next_inside, broken);
+        } else {
             out.triangles.push_back(mesh.triangle(f));
             out.fine_face.push_back(f);
-            continue;
         }
-        std::size_t chord_end = next_chord;
-        while (chord_end < chords.size() && chords[chord_end].face == f) ++chord_end;
-        std::size_t inside_end = next_inside;
-        while (inside_end < table.face_points.size() && table.face_points[inside_end].first == f) ++inside_end;
-        cutter.cut(f, chords.data() + next_chord, chords.data() + chord_end, table.face_points.data() + next_inside,
-                   table.face_points.data() + inside_end, broken);
-        next_chord = chord_end;
-        next_inside = inside_end;
     }
 
     // 4. Halfedges of the overlay, by tail vertex, to find a directed edge and its twin.
@@ -960,26 +978,10 @@ Overlay build_patch_overlay(const GeodesicTriangulation& g, std::vector<int> coa
 
     // 3. The fine faces that the cut touches, cut into triangles; the others are added whole as the flood
     // reaches them.
-    std::vector<int> touched;
-    for (const Chord& c : cuts.chords) touched.push_back(c.face);
-    for (const auto& [f, id] : table.face_points) touched.push_back(f);
-    for (const auto& e : table.edges)
-        for (int h : {mesh.find_halfedge(e.v0, e.v1), mesh.find_halfedge(e.v1, e.v0)})
-            if (h >= 0) touched.push_back(Mesh::face_of(h));
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    const std::vector<int> touched = touched_faces(mesh, cuts, table);
     FaceCutter cutter(mesh, table, cut);
     std::size_t next_chord = 0, next_inside = 0;
-    for (int f : touched) {
-        while (next_chord < cuts.chords.size() && cuts.chords[next_chord].face < f) ++next_chord;
-        std::size_t chord_end = next_chord;
-        while (chord_end < cuts.chords.size() && cuts.chords[chord_end].face == f) ++chord_end;
-        while (next_inside < table.face_points.size() && table.face_points[next_inside].first < f) ++next_inside;
-        std::size_t inside_end = next_inside;
-        while (inside_end < table.face_points.size() && table.face_points[inside_end].first == f) ++inside_end;
-        cutter.cut(f, cuts.chords.data() + next_chord, cuts.chords.data() + chord_end,
-                   table.face_points.data() + next_inside, table.face_points.data() + inside_end, broken);
-    }
+    for (int f : touched) cut_face(cutter, f, cuts, table, next_chord, next_inside, broken);
     for (int e : edges)
         if (broken[e]) throw InvalidInput("coarse edge " + std::to_string(e) + ": its polyline cannot be cut");
 
