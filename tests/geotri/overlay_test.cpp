@@ -19,6 +19,8 @@
 
 #include <gtest/gtest.h>
 
+#include "patch_location.h"  // libgeotri/src: the patch that holds a point, found by rays
+
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
@@ -26,6 +28,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -526,6 +529,22 @@ std::string read_text(const std::string& path) {
 
 // ---- Patches cut out of T alone (PatchRegion without an overlay) ---------------------------------------------
 
+/// A real mesh, decimated to 320 faces, traced in the decimation's classes and untangled.
+GeodesicTriangulation bob_small_320() {
+    auto fine =
+        std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
+    DecimateOptions options;
+    options.target_faces = 320;
+    const DecimateResult decimated = decimate(*fine, options);
+    const EdgePaths paths = make_edge_paths(*fine, decimated);
+    GeodesicTriangulation g(fine, make_coarse_mesh(decimated.coarse, "bob"));
+    TraceOptions trace_options;
+    trace_options.edge_paths = &paths;
+    trace(g, trace_options);
+    flip_to_delaunay(g);
+    return g;
+}
+
 /// Every patch of g, and every patch with each neighbour, cut out of T alone makes the same region mesh, to the
 /// bit, as cut out of the overlay of all of g: the same triangles in the same order, so the same propagations.
 void expect_patches_alone_as_in_the_overlay(const GeodesicTriangulation& g, const std::string& name) {
@@ -566,21 +585,7 @@ TEST(PatchAlone, regions_are_those_of_the_whole_overlay) {
         expect_patches_alone_as_in_the_overlay(tetrahedron(fine, tetrahedron_off_vertices(fine->mesh)),
                                                "vertices inside fine faces and on an edge");
     }
-    {
-        // A real mesh, decimated, traced in the decimation's classes and untangled: 320 faces.
-        auto fine =
-            std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
-        DecimateOptions options;
-        options.target_faces = 320;
-        const DecimateResult decimated = decimate(*fine, options);
-        const EdgePaths paths = make_edge_paths(*fine, decimated);
-        GeodesicTriangulation g(fine, make_coarse_mesh(decimated.coarse, "bob"));
-        TraceOptions trace_options;
-        trace_options.edge_paths = &paths;
-        trace(g, trace_options);
-        flip_to_delaunay(g);
-        expect_patches_alone_as_in_the_overlay(g, "bob_small");
-    }
+    expect_patches_alone_as_in_the_overlay(bob_small_320(), "bob_small");
 }
 
 TEST(PatchAlone, a_patch_that_holds_another_coarse_vertex_is_refused) {
@@ -640,6 +645,82 @@ TEST(PatchAlone, a_patch_pinched_at_a_vertex_of_t_is_refused) {
     const std::vector<int> bad = build_overlay(g).bad_patches;
     ASSERT_NE(std::find(bad.begin(), bad.end(), face), bad.end());
     EXPECT_THROW(PatchRegion(g, {face}), InvalidInput);
+}
+
+// ---- The patch that holds a point, found by rays (libgeotri/src/patch_location.h) -------------------------------
+
+/// Every fine vertex, a point on every fine edge and one inside every fine face, each located by rays among all
+/// patches of g and among a patch's neighbours, against the patches of the whole overlay that hold it (their
+/// closures). Returns how many of the points inside one patch the rays left unclear.
+int expect_rays_find_the_patch(const GeodesicTriangulation& g, const std::string& name) {
+    SCOPED_TRACE(name);
+    const Overlay whole = build_overlay(g);
+    EXPECT_TRUE(whole.valid()) << "the test needs a valid G";
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    const CoarseMesh& coarse = g.coarse();
+    std::vector<OpenMesh::FaceHandle> all;
+    std::vector<PatchRegion> patches;
+    for (auto f : coarse.faces()) {
+        all.push_back(f);
+        patches.emplace_back(g, whole, std::vector<int>{f.idx()});
+    }
+    std::vector<SurfacePoint> points;
+    for (int v = 0; v < mesh.num_vertices(); ++v) points.push_back(SurfacePoint::at_vertex(v));
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+        const auto& t = mesh.triangle(f);
+        for (int k = 0; k < 3; ++k)  // each edge once, from the face where it runs up
+            if (t[k] < t[(k + 1) % 3]) points.push_back(SurfacePoint::on_edge(t[k], t[(k + 1) % 3], 0.37));
+        points.push_back(SurfacePoint::in_face(f, {0.2, 0.3, 0.5}));
+    }
+    int unclear = 0, inside = 0;
+    for (const SurfacePoint& p : points) {
+        std::vector<OpenMesh::FaceHandle> holders;  // the closures that hold p
+        for (std::size_t i = 0; i < patches.size(); ++i)
+            if (patches[i].to_region(p)) holders.push_back(all[i]);
+        const std::optional<OpenMesh::FaceHandle> found = detail::patch_holding(g, all, p);
+        if (!found) {
+            unclear += holders.size() == 1;
+            continue;
+        }
+        if (found->is_valid()) {
+            ++inside;
+            EXPECT_EQ(holders, std::vector<OpenMesh::FaceHandle>{*found}) << geodesic::to_spec(p);
+            // Among the neighbours of its patch only: in none of them.
+            std::vector<OpenMesh::FaceHandle> neighbours(coarse.ff_range(*found).begin(), coarse.ff_range(*found).end());
+            const std::optional<OpenMesh::FaceHandle> among = detail::patch_holding(g, neighbours, p);
+            if (among) {
+                EXPECT_FALSE(among->is_valid()) << geodesic::to_spec(p);
+            }
+            // Among them and its patch, last: its patch.
+            neighbours.push_back(*found);
+            const std::optional<OpenMesh::FaceHandle> with_it = detail::patch_holding(g, neighbours, p);
+            if (with_it) {
+                EXPECT_EQ(*with_it, *found) << geodesic::to_spec(p);
+            }
+        } else {
+            EXPECT_GE(holders.size(), 2u) << geodesic::to_spec(p) << " is strictly inside a patch";
+        }
+    }
+    EXPECT_GT(inside, 0);
+    return unclear;
+}
+
+TEST(PatchHolding, rays_find_the_patch_of_the_whole_overlay) {
+    // Geodesics through fine vertices and along fine edges (the cube's); coarse vertices inside fine faces and on
+    // an edge (the icosphere's); a traced and untangled G of a real mesh, whose polylines run along fine edges
+    // wherever the decimation's classes do. Points on a polyline get no clear answer, or none.
+    for (bool irregular : {false, true}) {
+        // The cube's four other corners may stay unclear: every ray from them runs into a vertex of the lattice.
+        auto fine = make_fine(test::cube(4, 1.0, irregular, 7), "cube");
+        EXPECT_LE(expect_rays_find_the_patch(tetrahedron(fine, cube_tetrahedron_vertices(fine->mesh)),
+                                             irregular ? "irregular cube" : "cube"),
+                  4);
+    }
+    auto fine = make_fine(test::icosphere(3), "icosphere");
+    EXPECT_EQ(expect_rays_find_the_patch(tetrahedron(fine, tetrahedron_off_vertices(fine->mesh)),
+                                         "vertices inside fine faces and on an edge"),
+              0);
+    EXPECT_EQ(expect_rays_find_the_patch(bob_small_320(), "bob_small"), 0);
 }
 
 TEST(OverlayIo, writers_hold_every_triangle_and_exact_coordinates) {

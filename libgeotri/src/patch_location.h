@@ -1,0 +1,23 @@
+#pragma once
+// Which patch of G holds a point of T, found without cutting T: straight rays from the point, and the side from
+// which they first cross a polyline. Refinement uses it to skip the splits of patches that cannot hold a new vertex,
+// each of which would cost a propagation before it was refused.
+
+#include <geotri/geodesic_triangulation.h>
+
+#include <optional>
+#include <vector>
+
+namespace geotri::detail {
+
+/// Which of the patches of `faces` holds p strictly inside, for a G valid around them (each patch a disk bounded by
+/// its face's three polylines, on their left). A straight ray from p that first meets one of those polylines
+/// crosses it out of the patch that holds p: that face when it is one of `faces`, else none of them does (an
+/// invalid handle, also when p is a point of one of their polylines). Nothing when the rays give no clear answer
+/// (p within rounding of a polyline, a ray through a point of one or along a fine edge, or no ray meeting one
+/// within the patches' perimeter): the caller must find out otherwise.
+std::optional<OpenMesh::FaceHandle> patch_holding(const GeodesicTriangulation& g,
+                                                  const std::vector<OpenMesh::FaceHandle>& faces,
+                                                  const SurfacePoint& p);
+
+}  // namespace geotri::detail
