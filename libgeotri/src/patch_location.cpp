@@ -114,6 +114,7 @@ std::optional<FaceHandle> patch_holding(const GeodesicTriangulation& g, const st
     }
 
     const double theta = cone_angle(mesh, point);
+    bool walked_on = true;  // every ray walked the whole perimeter without meeting a polyline
     for (int k = 0; k < k_rays; ++k) {
         StraightGeodesicResult ray;
         try {
@@ -122,12 +123,19 @@ std::optional<FaceHandle> patch_holding(const GeodesicTriangulation& g, const st
             return std::nullopt;
         }
         const std::optional<HalfedgeHandle> crossed = first_crossing(g, ray.path, segments);
-        if (!crossed) continue;
+        if (!crossed) {
+            walked_on = walked_on && !ray.stopped_at_vertex && !ray.stopped_at_boundary;
+            continue;
+        }
         if (!crossed->is_valid()) return std::nullopt;
         // p lies in the patch that the ray leaves: one of `faces`, or else none of them.
         const FaceHandle holder = coarse.face_handle(*crossed);
         return std::find(faces.begin(), faces.end(), holder) != faces.end() ? holder : FaceHandle();
     }
+    // A patch that held p would hold three straight geodesics from it longer than all the patches' perimeter: only
+    // one shaped like a balloon can (on lucy_100k, such points were curved vertices within a circumcircle but on
+    // another part of the body, whose tries each cost a propagation across it).
+    if (walked_on) return FaceHandle();
     return std::nullopt;
 }
 

@@ -13,9 +13,11 @@ namespace geotri::detail {
 /// Which of the patches of `faces` holds p strictly inside, for a G valid around them (each patch a disk bounded by
 /// its face's three polylines, on their left). A straight ray from p that first meets one of those polylines
 /// crosses it out of the patch that holds p: that face when it is one of `faces`, else none of them does (an
-/// invalid handle, also when p is a point of one of their polylines). Nothing when the rays give no clear answer
-/// (p within rounding of a polyline, a ray through a point of one or along a fine edge, or no ray meeting one
-/// within the patches' perimeter): the caller must find out otherwise.
+/// invalid handle, also when p is a point of one of their polylines). When three rays each walk the patches'
+/// whole perimeter without meeting one, p is taken to lie in none of them (only a patch shaped like a balloon
+/// could hold it): the answer is then a guess, good enough for a caller that only saves tries with it. Nothing
+/// when the rays give no clear answer (p within rounding of a polyline, a ray through a point of one or along a
+/// fine edge, or stopped at a fine vertex): the caller must find out otherwise.
 std::optional<OpenMesh::FaceHandle> patch_holding(const GeodesicTriangulation& g,
                                                   const std::vector<OpenMesh::FaceHandle>& faces,
                                                   const SurfacePoint& p);
