@@ -50,7 +50,8 @@ int run(tools::Tool& tool) {
         ->check(CLI::PositiveNumber);
     app.add_option("--min-angle", options.min_angle_deg,
                    "Then refine until every corner angle is at least this many degrees, at most 35 (default: none);\n"
-                   "corners at points of T whose cone angle is below three times it are exempt")
+                   "corners at points of T whose cone angle is below three times it are exempt. Then corners above\n"
+                   "180 degrees are cut in two where every new corner stays at least this")
         ->check(CLI::Range(0.0, 35.0));
     app.add_option("--max-new-vertices", options.max_new_vertices,
                    "At most this many new vertices in each phase (default: none for bisection; for --min-angle,\n"
@@ -108,6 +109,7 @@ int run(tools::Tool& tool) {
         summary.add("flips", r.flips);
         summary.add("exempt_corners", r.exempt_corners);
         summary.add("small_corners_left", r.small_corners_left);
+        summary.add("wide_corners_left", r.wide_corners_left);
         summary.add("vertex_cap_reached", r.vertex_cap_reached);
         summary.add("longest_edge", r.longest_edge);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);
@@ -132,6 +134,8 @@ int run(tools::Tool& tool) {
             std::fprintf(stderr, "%s: %d corners below %g degrees at cone points that force them, %d where refinement "
                                  "gave up\n",
                          program, r.exempt_corners, options.min_angle_deg, r.small_corners_left);
+        if (r.wide_corners_left > 0)
+            std::fprintf(stderr, "%s: %d corners above 180 degrees left\n", program, r.wide_corners_left);
         std::fprintf(stderr, "%s: %s; refined in %.3f s\n", program, r.valid_after ? "valid" : "INVALID", r.seconds);
     }
     return r.valid_after ? tools::k_exit_ok : k_exit_invalid;

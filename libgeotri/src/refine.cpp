@@ -39,6 +39,9 @@ constexpr double k_max_min_angle_deg = 35.0;
 // circumcentres laid out as if they were chase it with ever smaller triangles. Gently curved vertices (scanned
 // surfaces have them everywhere) are left alone: snapping to them would itself make short edges.
 constexpr double k_curved_fraction = 1.0 / 3.0;
+// A corner above this (radians) belongs to a patch that wraps around a bump of T (its corners sum to far more than
+// π): no use for an element. Once the minimum angle is reached, refinement cuts such corners in two.
+constexpr double k_max_corner = k_pi;
 // A circumcentre farther than this times the triangle's longest edge is not inserted.
 constexpr double k_max_radius_ratio = 4.0;
 // How many fine faces the search for a curved vertex near a circumcentre may look at.
@@ -188,22 +191,35 @@ public:
         std::set<std::array<int, 3>> given_up;
         std::vector<std::array<int, 3>> cached_vertices;
         std::vector<double> cached_min;  // per face: its smallest corner that is not exempt (or infinity)
+        std::vector<double> cached_max;  // per face: its largest corner (or 0 for a face too small to refine)
         while (!cap_reached()) {
             const CoarseMesh& coarse = g_.coarse();
             cached_vertices.resize(coarse.n_faces(), {-1, -1, -1});
             cached_min.resize(coarse.n_faces());
-            FaceHandle worst;
+            cached_max.resize(coarse.n_faces());
+            FaceHandle worst, reflex;
             for (FaceHandle f : coarse.faces()) {
                 const std::size_t i = static_cast<std::size_t>(f.idx());
                 const std::array<int, 3> vertices = vertices_of(coarse, f);
                 if (vertices != cached_vertices[i]) {  // a split or a flip changed it
                     cached_vertices[i] = vertices;
                     cached_min[i] = smallest_corner(f);
+                    cached_max[i] = largest_corner(f);
                 }
-                if (cached_min[i] >= min_angle_ || given_up.count(vertices)) continue;
+                if (given_up.count(vertices)) continue;
+                if (cached_max[i] > k_max_corner &&
+                    (!reflex.is_valid() || cached_max[i] > cached_max[static_cast<std::size_t>(reflex.idx())]))
+                    reflex = f;
+                if (cached_min[i] >= min_angle_) continue;
                 if (!worst.is_valid() || cached_min[i] < cached_min[static_cast<std::size_t>(worst.idx())]) worst = f;
             }
-            if (!worst.is_valid()) break;
+            if (!worst.is_valid()) {
+                // Every corner is at least the angle: then the corners above k_max_corner, the widest first.
+                if (!reflex.is_valid()) break;
+                if (!mend_wide_corners(reflex)) given_up.insert(vertices_of(coarse, reflex));
+                progress("angle refinement");
+                continue;
+            }
             // A removal comes first: where decimation left two vertices close together, circumcentres would
             // cascade into ever smaller triangles between them.
             if (remove_a_vertex_of(worst)) {
@@ -215,12 +231,14 @@ public:
         }
     }
 
-    /// Counts the corners below the minimum angle left: exempt ones, and the others.
-    void count_small_corners() {
+    /// Counts the corners left below the minimum angle (exempt ones, and the others) and above k_max_corner.
+    void count_corners_left() {
         if (!(min_angle_ > 0.0)) return;
         for (FaceHandle f : g_.coarse().faces())
             for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
-                if (corner_angle(g_, h) >= min_angle_) continue;
+                const double corner = corner_angle(g_, h);
+                result_.wide_corners_left += corner > k_max_corner;
+                if (corner >= min_angle_) continue;
                 if (exempt(g_.coarse().from_vertex_handle(h))) ++result_.exempt_corners;
                 else ++result_.small_corners_left;
             }
@@ -248,6 +266,39 @@ private:
             if (!exempt(g_.coarse().from_vertex_handle(h))) smallest = std::min(smallest, corner_angle(g_, h));
         }
         return shortest < min_edge_of(f) ? std::numeric_limits<double>::infinity() : smallest;
+    }
+
+    /// The largest corner of f, or 0 for a face too small to refine.
+    double largest_corner(FaceHandle f) const {
+        double largest = 0.0, shortest = std::numeric_limits<double>::infinity();
+        for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
+            shortest = std::min(shortest, g_.length(g_.coarse().edge_handle(h)));
+            largest = std::max(largest, corner_angle(g_, h));
+        }
+        return shortest < min_edge_of(f) ? 0.0 : largest;
+    }
+
+    /// Cuts f's corners above k_max_corner in two: splits the edge opposite each, the widest first, else inserts f's
+    /// circumcentre; only where every new corner is at least the minimum angle, so that mending them never makes
+    /// work for the minimum angle nor lowers it (with half of it as the bar, triceratops ended at 7.4 degrees
+    /// instead of 11.0).
+    bool mend_wide_corners(FaceHandle f) {
+        std::vector<std::pair<double, HalfedgeHandle>> wide;
+        for (HalfedgeHandle h : halfedges_of(g_.coarse(), f))
+            if (corner_angle(g_, h) > k_max_corner) wide.emplace_back(corner_angle(g_, h), h);
+        std::sort(wide.begin(), wide.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+        const double floor = std::max(keep_above_, min_angle_), min_length = min_edge_of(f);
+        for (const auto& corner : wide) {
+            const EdgeHandle opposite = g_.coarse().edge_handle(g_.coarse().next_halfedge_handle(corner.second));
+            for (double fraction : {0.5, 0.4, 0.6}) {
+                auto split = [&](GeodesicTriangulation& trial) {
+                    return split_edge(trial, opposite, fraction, split_options(true));
+                };
+                if (try_split(split, floor, min_length, result_.edge_splits) == Tried::kept) return true;
+            }
+        }
+        const std::optional<Centre> centre = circumcentre(f);
+        return centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length);
     }
 
     /// The shortest edge that refinement refines in f and makes there: min_edge_, or less near an edge of the G given
@@ -701,7 +752,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     Refiner refiner(g, options, result);
     refiner.bisect();
     refiner.raise_min_angle();
-    refiner.count_small_corners();
+    refiner.count_corners_left();
 
     const ValidationReport after = validate(g);
     result.valid_after = after.valid;

@@ -18,7 +18,8 @@ struct RefineOptions {
     int target_faces = 0;        ///< bisect until G has at least this many faces (0: no target)
     /// Then insert circumcentres until every corner angle is at least this, in degrees (0: none; at most 35).
     /// Corners at points of T whose cone angle is below three times this are exempt: a vertex of degree three or
-    /// more there must have a smaller corner.
+    /// more there must have a smaller corner. Once every other corner is at least this, corners above 180 degrees
+    /// (patches that wrap around a bump of T) are cut in two, where that leaves every new corner at least this.
     double min_angle_deg = 0.0;
     /// Do not refine a triangle whose shortest edge is shorter than this (0: a tenth of the mean edge length of T),
     /// nor make a new edge shorter than it, so that refinement does not chase a needle of T with ever smaller
@@ -50,6 +51,7 @@ struct RefineResult {
     int flips = 0;
     int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
     int small_corners_left = 0;        ///< other corners below the minimum angle, where refinement gave up
+    int wide_corners_left = 0;         ///< with a minimum angle: corners above 180 degrees left
     bool vertex_cap_reached = false;   ///< stopped at max_new_vertices
     double longest_edge = 0.0;         ///< after
     CornerAngleStats angles_before, angles_after;
