@@ -197,7 +197,7 @@ public:
             cached_vertices.resize(coarse.n_faces(), {-1, -1, -1});
             cached_min.resize(coarse.n_faces());
             cached_max.resize(coarse.n_faces());
-            FaceHandle worst, reflex;
+            FaceHandle worst, widest;
             for (FaceHandle f : coarse.faces()) {
                 const std::size_t i = static_cast<std::size_t>(f.idx());
                 const std::array<int, 3> vertices = vertices_of(coarse, f);
@@ -208,15 +208,15 @@ public:
                 }
                 if (given_up.count(vertices)) continue;
                 if (cached_max[i] > k_max_corner &&
-                    (!reflex.is_valid() || cached_max[i] > cached_max[static_cast<std::size_t>(reflex.idx())]))
-                    reflex = f;
+                    (!widest.is_valid() || cached_max[i] > cached_max[static_cast<std::size_t>(widest.idx())]))
+                    widest = f;
                 if (cached_min[i] >= min_angle_) continue;
                 if (!worst.is_valid() || cached_min[i] < cached_min[static_cast<std::size_t>(worst.idx())]) worst = f;
             }
             if (!worst.is_valid()) {
-                // Every corner is at least the angle: then the corners above k_max_corner, the widest first.
-                if (!reflex.is_valid()) break;
-                if (!mend_wide_corners(reflex)) given_up.insert(vertices_of(coarse, reflex));
+                // No triangle is left below the angle but those given up: then the corners above k_max_corner.
+                if (!widest.is_valid()) break;
+                if (!mend_wide_corners(widest)) given_up.insert(vertices_of(coarse, widest));
                 progress("angle refinement");
                 continue;
             }
