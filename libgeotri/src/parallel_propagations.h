@@ -17,9 +17,10 @@
 namespace geotri::detail {
 
 /// Calls work(k, propagation) for k in [0, n) on `threads` threads (0: as many as OpenMP likes), each with a
-/// propagation object over `mesh` of its own, made on first use; a single thread uses `reuse` instead when given.
-/// Rethrows the first exception (in k order) after the loop. The result is the same for any thread count when
-/// work(k, ...) writes only what belongs to k.
+/// propagation object over `mesh`: the calling thread uses `reuse` when given, the others one of their own, made on
+/// first use (making one costs a pass over the mesh: on a mesh of 200k faces, refinement spent 14% of its time
+/// making them). Rethrows the first exception (in k order) after the loop. The result is the same for any thread
+/// count when work(k, ...) writes only what belongs to k.
 template <class Work>
 void for_each_with_propagation(const geodesic::Mesh& mesh, std::size_t n, int threads, Work work,
                                geodesic::ExactGeodesic* reuse = nullptr) {
@@ -31,11 +32,14 @@ void for_each_with_propagation(const geodesic::Mesh& mesh, std::size_t n, int th
 #else
     (void)threads;
 #endif
-    if (team > 1) reuse = nullptr;
 #ifdef _OPENMP
 #pragma omp parallel num_threads(team) if (team > 1)
 #endif
     {
+        geodesic::ExactGeodesic* mine = reuse;
+#ifdef _OPENMP
+        if (omp_get_thread_num() != 0) mine = nullptr;
+#endif
         std::unique_ptr<geodesic::ExactGeodesic> own;  // this thread's, reused across iterations
 #ifdef _OPENMP
 #pragma omp for schedule(dynamic, 1)
@@ -43,8 +47,11 @@ void for_each_with_propagation(const geodesic::Mesh& mesh, std::size_t n, int th
         for (long i = 0; i < count; ++i) {
             const std::size_t k = static_cast<std::size_t>(i);
             try {
-                if (!reuse && !own) own = std::make_unique<geodesic::ExactGeodesic>(mesh);
-                work(k, reuse ? *reuse : *own);
+                if (!mine) {
+                    own = std::make_unique<geodesic::ExactGeodesic>(mesh);
+                    mine = own.get();
+                }
+                work(k, *mine);
             } catch (...) {
                 errors[k] = std::current_exception();
             }
