@@ -96,6 +96,7 @@ def sweep_one(mesh, options, work):
             return stop(f"refine failed: {err}")
         row.append(f"{ref['faces']} faces, {ref['min_corner_angle_deg']:.1f}°" +
                    (f", {ref['small_corners_left']} left" if ref["small_corners_left"] else "") +
+                   (f", {ref['wide_corners_left']} above 180°" if ref.get("wide_corners_left") else "") +
                    ("" if ref["valid"] else ", INVALID"))
         final = f"{stem}.refine.gtri"
     else:
