@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 
 namespace geotri::detail {
@@ -19,8 +20,11 @@ using OpenMesh::HalfedgeHandle;
 
 namespace {
 
-// Rays tried, evenly spread around p, before giving up.
+// Rays tried, evenly spread around p, before giving up; turned by this fraction of their spacing from p's reference
+// direction, so that none runs along a fine edge through p on a regular mesh (an edge point's rays at 0 and π
+// would: along its edge).
 constexpr int k_rays = 3;
+constexpr double k_ray_turn = 0.6180339887498949;
 // × the longest edge of a fine face: a ray that passes this close to an end of a polyline's segment gives no clear
 // answer, nor one that starts this close to a segment; one that ends this close to a segment (where it crosses a
 // fine edge that a polyline runs along) crosses it there.
@@ -33,15 +37,18 @@ struct Segment {
 };
 using SegmentsByFace = std::unordered_map<int, std::vector<Segment>>;
 
-/// The first crossing of the ray (a straight polyline of T from p) with a segment: the halfedge of the crossed
-/// edge whose left side the ray leaves. Nothing when it crosses none; an invalid handle when unclear.
-std::optional<HalfedgeHandle> first_crossing(const GeodesicTriangulation& g, const Polyline& ray,
-                                             const SegmentsByFace& segments) {
+/// What a ray (a straight polyline of T from p) meets first among the segments.
+struct Crossing {
+    enum Kind { none, crossed, unclear, starts_on_polyline } kind = none;
+    HalfedgeHandle leaves = HalfedgeHandle();  ///< when crossed: the halfedge of the crossed edge whose left side the ray leaves
+};
+
+Crossing first_crossing(const GeodesicTriangulation& g, const Polyline& ray, const SegmentsByFace& segments) {
     const Mesh& mesh = g.fine().mesh;
     for (std::size_t i = 0; i + 1 < ray.size(); ++i) {
-        if (on_common_edge(mesh, ray[i], ray[i + 1])) return HalfedgeHandle();
+        if (on_common_edge(mesh, ray[i], ray[i + 1])) return Crossing{Crossing::unclear};
         const int face = common_face(mesh, ray[i], ray[i + 1]);
-        if (face < 0) return HalfedgeHandle();
+        if (face < 0) return Crossing{Crossing::unclear};
         const auto found = segments.find(face);
         if (found == segments.end()) continue;
         const double tolerance =
@@ -50,17 +57,17 @@ std::optional<HalfedgeHandle> first_crossing(const GeodesicTriangulation& g, con
         const Eigen::Vector2d r1 = halfedge_coordinates(mesh, 3 * face, ray[i + 1]);
         const Eigen::Vector2d r = r1 - r0;
         double first = std::numeric_limits<double>::infinity();
-        std::optional<HalfedgeHandle> crossed;
+        Crossing crossing;
         for (const Segment& s : found->second) {
             const Eigen::Vector2d q0 = halfedge_coordinates(mesh, 3 * face, s.from);
             const Eigen::Vector2d q1 = halfedge_coordinates(mesh, 3 * face, s.to);
             if (point_segment_distance(q0, r0, r1) < tolerance || point_segment_distance(q1, r0, r1) < tolerance)
-                return HalfedgeHandle();
+                return Crossing{Crossing::unclear};
             const Eigen::Vector2d q = q1 - q0;
             double along;
             if (point_segment_distance(r0, q0, q1) < tolerance) {
-                if (i == 0) return HalfedgeHandle();  // p on the polyline, within rounding
-                along = 0.0;                          // where a polyline along a fine edge is crossed
+                if (i == 0) return Crossing{Crossing::starts_on_polyline};  // within rounding
+                along = 0.0;  // where a polyline along a fine edge is crossed
             } else if (point_segment_distance(r1, q0, q1) < tolerance) {
                 along = 1.0;
             } else {
@@ -68,15 +75,15 @@ std::optional<HalfedgeHandle> first_crossing(const GeodesicTriangulation& g, con
                 along = cross(q0 - r0, q) / cross(r, q);
                 if (along < 0.0 || along > 1.0) continue;
             }
-            if (std::abs(cross(q, r)) <= k_clearance * q.norm() * r.norm()) return HalfedgeHandle();  // grazing
+            if (std::abs(cross(q, r)) <= k_clearance * q.norm() * r.norm()) return Crossing{Crossing::unclear};
             if (along >= first) continue;
             first = along;
             // A ray that crosses q to its right leaves the left side of the edge's first halfedge.
-            crossed = g.coarse().halfedge_handle(s.edge, cross(q, r) < 0.0 ? 0 : 1);
+            crossing = {Crossing::crossed, g.coarse().halfedge_handle(s.edge, cross(q, r) < 0.0 ? 0 : 1)};
         }
-        if (crossed) return crossed;
+        if (crossing.kind == Crossing::crossed) return crossing;
     }
-    return std::nullopt;
+    return Crossing{};
 }
 
 }  // namespace
@@ -118,18 +125,21 @@ std::optional<FaceHandle> patch_holding(const GeodesicTriangulation& g, const st
     for (int k = 0; k < k_rays; ++k) {
         StraightGeodesicResult ray;
         try {
-            ray = trace_straight_geodesic(mesh, point, (k + 0.5) * theta / k_rays, perimeter);
+            ray = trace_straight_geodesic(mesh, point, (k + k_ray_turn) * theta / k_rays, perimeter);
         } catch (const Error&) {
             return std::nullopt;
         }
-        const std::optional<HalfedgeHandle> crossed = first_crossing(g, ray.path, segments);
-        if (!crossed) {
-            walked_on = walked_on && !ray.stopped_at_vertex && !ray.stopped_at_boundary;
-            continue;
+        const Crossing crossing = first_crossing(g, ray.path, segments);
+        switch (crossing.kind) {
+            case Crossing::starts_on_polyline: return std::nullopt;  // so does every ray
+            case Crossing::unclear: walked_on = false; continue;
+            case Crossing::none:
+                walked_on = walked_on && !ray.stopped_at_vertex && !ray.stopped_at_boundary;
+                continue;
+            case Crossing::crossed: break;
         }
-        if (!crossed->is_valid()) return std::nullopt;
         // p lies in the patch that the ray leaves: one of `faces`, or else none of them.
-        const FaceHandle holder = coarse.face_handle(*crossed);
+        const FaceHandle holder = coarse.face_handle(crossing.leaves);
         return std::find(faces.begin(), faces.end(), holder) != faces.end() ? holder : FaceHandle();
     }
     // A patch that held p would hold three straight geodesics from it longer than all the patches' perimeter: only

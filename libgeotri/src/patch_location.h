@@ -15,9 +15,10 @@ namespace geotri::detail {
 /// crosses it out of the patch that holds p: that face when it is one of `faces`, else none of them does (an
 /// invalid handle, also when p is a point of one of their polylines). When three rays each walk the patches'
 /// whole perimeter without meeting one, p is taken to lie in none of them (only a patch shaped like a balloon
-/// could hold it): the answer is then a guess, good enough for a caller that only saves tries with it. Nothing
-/// when the rays give no clear answer (p within rounding of a polyline, a ray through a point of one or along a
-/// fine edge, or stopped at a fine vertex): the caller must find out otherwise.
+/// could hold it): the answer is then a guess, good enough for a caller that only saves tries with it. A ray that
+/// passes within rounding of a polyline's point, runs along a fine edge or stops at a fine vertex says nothing,
+/// and the next is tried. Nothing when none gives an answer, or when p lies within rounding of a polyline: the
+/// caller must find out otherwise.
 std::optional<OpenMesh::FaceHandle> patch_holding(const GeodesicTriangulation& g,
                                                   const std::vector<OpenMesh::FaceHandle>& faces,
                                                   const SurfacePoint& p);
