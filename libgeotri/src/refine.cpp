@@ -217,7 +217,7 @@ public:
                 // No triangle is left below the angle but those given up: then the corners above k_max_corner.
                 if (!widest.is_valid()) break;
                 if (!mend_wide_corners(widest)) given_up.insert(vertices_of(coarse, widest));
-                progress("angle refinement");
+                progress("corners above 180 degrees");
                 continue;
             }
             // A removal comes first: where decimation left two vertices close together, circumcentres would
@@ -279,13 +279,15 @@ private:
     }
 
     /// Cuts f's corners above k_max_corner in two: splits the edge opposite each, the widest first, else inserts f's
-    /// circumcentre; only where every new corner is at least the minimum angle, so that mending them never makes
-    /// work for the minimum angle nor lowers it (with half of it as the bar, triceratops ended at 7.4 degrees
-    /// instead of 11.0).
+    /// circumcentre; only where every corner that changes is at least the minimum angle, so that mending them never
+    /// makes work for the minimum angle nor lowers it (with half of it as the bar for the new vertex's corners,
+    /// triceratops ended at 7.4 degrees instead of 11.0).
     bool mend_wide_corners(FaceHandle f) {
         std::vector<std::pair<double, HalfedgeHandle>> wide;
-        for (HalfedgeHandle h : halfedges_of(g_.coarse(), f))
-            if (corner_angle(g_, h) > k_max_corner) wide.emplace_back(corner_angle(g_, h), h);
+        for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
+            const double corner = corner_angle(g_, h);
+            if (corner > k_max_corner) wide.emplace_back(corner, h);
+        }
         std::sort(wide.begin(), wide.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
         const double floor = std::max(keep_above_, min_angle_), min_length = min_edge_of(f);
         for (const auto& corner : wide) {
@@ -294,11 +296,11 @@ private:
                 auto split = [&](GeodesicTriangulation& trial) {
                     return split_edge(trial, opposite, fraction, split_options(true));
                 };
-                if (try_split(split, floor, min_length, result_.edge_splits) == Tried::kept) return true;
+                if (try_split(split, floor, min_length, result_.edge_splits, floor) == Tried::kept) return true;
             }
         }
         const std::optional<Centre> centre = circumcentre(f);
-        return centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length);
+        return centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length, floor);
     }
 
     /// The shortest edge that refinement refines in f and makes there: min_edge_, or less near an edge of the G given
@@ -332,12 +334,13 @@ private:
     /// Does `split` (one of split_edge() or split_face() on the G it is given) on a copy of G, then the flips around
     /// the new vertex, and keeps the result when the corners of the faces at the new vertex are no smaller than
     /// `floor` (radians) and its edges no shorter than `min_length`, the shortest edge that refinement still
-    /// refines there (min_edge_of()). A split that makes a worse corner than the one it mends is what lets
+    /// refines there (min_edge_of()), and every corner that the split and its flips change is no smaller than
+    /// keep_above_ and `changed_floor`. A split that makes a worse corner than the one it mends is what lets
     /// refinement chase its own tail; one that puts the new vertex next to another makes triangles too small to
     /// mend. Says whether G changed, or else whether the split itself was refused or made and then refused.
     enum class Tried { kept, refused_split, refused_shape };
     template <class Split>
-    Tried try_split(Split split, double floor, double min_length, int& counter) {
+    Tried try_split(Split split, double floor, double min_length, int& counter, double changed_floor = 0.0) {
         GeodesicTriangulation trial = g_;
         const SplitResult done = split(trial);
         if (!done.done) {
@@ -351,8 +354,9 @@ private:
         double shortest_new = std::numeric_limits<double>::infinity();
         for (HalfedgeHandle h : trial.coarse().voh_range(done.vertex))
             shortest_new = std::min(shortest_new, trial.length(trial.coarse().edge_handle(h)));
+        const double changed_bar = std::max(keep_above_, changed_floor);
         if (shortest_new < min_length || smallest_corner_around(trial, done.vertex) < floor ||
-            (keep_above_ > 0.0 && smallest_changed_corner(trial) < keep_above_)) {
+            (changed_bar > 0.0 && smallest_changed_corner(trial) < changed_bar)) {
             ++result_.refused_splits;
             return Tried::refused_shape;
         }
@@ -639,9 +643,9 @@ private:
     }
 
     /// Splits the first of `faces` whose patch holds p strictly inside, with no new corner below `floor` and no new
-    /// edge shorter than `min_length`; false when none does.
+    /// edge shorter than `min_length` (try_split(), with `changed_floor`); false when none does.
     bool insert_in_one_of(const std::vector<FaceHandle>& faces, const SurfacePoint& p, double floor,
-                          double min_length) {
+                          double min_length, double changed_floor = 0.0) {
         // A try in a patch that does not hold p costs a propagation before it is refused: rays from p rule them
         // out first where they can (on lucy_100k at 25 degrees, two tries in three were such).
         std::vector<FaceHandle> candidates = faces;
@@ -650,7 +654,7 @@ private:
         SplitOptions options = split_options(false);
         for (std::size_t i = 0; i < candidates.size(); ++i) {
             auto split = [&](GeodesicTriangulation& trial) { return split_face(trial, candidates[i], p, options); };
-            const Tried tried = try_split(split, floor, min_length, result_.face_splits);
+            const Tried tried = try_split(split, floor, min_length, result_.face_splits, changed_floor);
             if (tried == Tried::kept) {
                 if (p.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(p.vertex);
                 return true;

@@ -36,8 +36,8 @@ struct FlipToDelaunayOptions {
     /// For untangling's trials and improve's evaluations; 0: as many as OpenMP likes. The result is the same for
     /// any count.
     int threads = 0;
-    /// With one thread: a propagation object over g.fine().mesh to reuse (saves its setup, which costs as much as
-    /// a short propagation); one is made per call when null.
+    /// A propagation object over g.fine().mesh for the calling thread to reuse (saves its setup, which costs as
+    /// much as a short propagation); one is made per call when null, and each other thread makes its own.
     geodesic::ExactGeodesic* propagation = nullptr;
     /// Called after each untangle round and each improve sweep with a line saying where it is.
     std::function<void(const std::string&)> progress;

@@ -27,8 +27,8 @@ struct ReconnectOptions {
     int max_corners = 12;
     /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
     geodesic::ExactGeodesic* propagation = nullptr;
-    /// Threads for the diagonals' propagations (one per corner); 0: as many as OpenMP likes. With more than one,
-    /// each thread makes its own propagation object. The result is the same for any count.
+    /// Threads for the diagonals' propagations (one per corner); 0: as many as OpenMP likes. The calling thread
+    /// uses `propagation`, each other thread makes its own. The result is the same for any count.
     int threads = 0;
     /// When the shortest geodesic between two corners leaves the polygon, try the shortest path inside the faces'
     /// patches, which needs the overlay.
