@@ -55,8 +55,9 @@ int run(tools::Tool& tool) {
         ->check(CLI::Range(0.0, 35.0));
     app.add_option("--max-new-vertices", options.max_new_vertices,
                    "At most this many new vertices in each phase (default: none for bisection; for --min-angle,\n"
-                   "four times the faces of G plus 100). On scanned surfaces whose every fine vertex is curved,\n"
-                   "refinement stops there while the corners below the angle still fall: more leaves fewer")
+                   "four times the faces of G plus 100, doubled once when fewer than 5% of the faces are then below\n"
+                   "the angle). On scanned surfaces whose every fine vertex is curved, refinement stops there while\n"
+                   "the corners below the angle still fall: more leaves fewer")
         ->check(CLI::PositiveNumber);
     app.add_flag("--no-flip", no_flip, "Do not flip towards geodesic Delaunay around new vertices");
     bool keep_vertices = false;

@@ -195,6 +195,37 @@ TEST(Refine, corners_above_180_degrees_are_cut_in_two) {
     }
 }
 
+// At 30 degrees the flipped footbones reach the default vertex cap with 15 of their 3112 faces below the angle: a
+// refinement nearly done, not a cascade, which gets a second budget as large and leaves 4 (where every option is
+// refused). A cap that the caller gives is never extended.
+TEST(Refine, a_refinement_nearly_done_at_the_vertex_cap_goes_on) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    GeodesicTriangulation g = traced(test::shared_mesh("anatomy/footbones.ply").path, 320);
+    flip_to_delaunay(g);
+    ASSERT_TRUE(validate(g).valid) << describe(validate(g));
+    const std::size_t given = g.coarse().n_vertices();
+    RefineOptions options;
+    options.min_angle_deg = 30.0;
+    const int cap = 4 * static_cast<int>(g.coarse().n_faces()) + 100;  // the default, given
+    options.max_new_vertices = cap;
+    GeodesicTriangulation capped = g;
+    const RefineResult at_cap = refine(capped, options);
+    options.max_new_vertices = 0;
+    const RefineResult r = refine(g, options);
+    std::cout << "[ refine   ] footbones at 30 degrees: cap given, " << capped.coarse().n_faces() << " faces, "
+              << at_cap.small_corners_left << " corners left; default cap, " << g.coarse().n_faces() << " faces, "
+              << r.small_corners_left << " left\n";
+    EXPECT_TRUE(at_cap.vertex_cap_reached);
+    EXPECT_LE(capped.coarse().n_vertices(), given + static_cast<std::size_t>(cap));
+    EXPECT_TRUE(r.valid_after);
+    EXPECT_FALSE(r.vertex_cap_reached);
+    EXPECT_LT(r.small_corners_left, at_cap.small_corners_left);
+    EXPECT_GT(g.coarse().n_vertices(), capped.coarse().n_vertices());
+    expect_valid_with_area(g);
+}
+
 // The bundled joint has chamfers a tenth of a fine edge long on average, and decimation keeps coarse vertices at
 // their corners. Refinement refused to refine triangles with an edge shorter than a tenth of T's mean edge, so it
 // left corners of 11 degrees next to them (19 at 30 degrees); it now refines down to the scale of such edges of

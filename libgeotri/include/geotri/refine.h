@@ -34,8 +34,9 @@ struct RefineOptions {
     /// angle differs from 2π by more than a third of the minimum angle) are always kept.
     bool remove_vertices = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
-    /// the faces of G, plus 100): where angle refinement cascades instead of converging (it does on some curved
-    /// meshes at 25-30 degrees), it stops there and says so.
+    /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
+    /// where angle refinement cascades instead of converging (it does on some curved meshes at 25-30 degrees), it
+    /// stops there and says so.
     int max_new_vertices = 0;
     /// Called now and then with a line saying where refinement is.
     std::function<void(const std::string&)> progress;
