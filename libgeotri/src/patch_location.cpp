@@ -40,7 +40,8 @@ using SegmentsByFace = std::unordered_map<int, std::vector<Segment>>;
 /// What a ray (a straight polyline of T from p) meets first among the segments.
 struct Crossing {
     enum Kind { none, crossed, unclear, starts_on_polyline } kind = none;
-    HalfedgeHandle leaves = HalfedgeHandle();  ///< when crossed: the halfedge of the crossed edge whose left side the ray leaves
+    /// When crossed: the halfedge of the crossed edge whose left side the ray leaves.
+    HalfedgeHandle leaves = HalfedgeHandle();
 };
 
 Crossing first_crossing(const GeodesicTriangulation& g, const Polyline& ray, const SegmentsByFace& segments) {

@@ -222,7 +222,7 @@ public:
                 ++below;
                 if (!worst.is_valid() || cached_min[i] < cached_min[static_cast<std::size_t>(worst.idx())]) worst = f;
             }
-            if (cap_reached()) {
+            if (cap_reached()) {  // unless nearly done (k_nearly_done): then once more as many
                 if (extended || static_cast<double>(below) >= k_nearly_done * static_cast<double>(coarse.n_faces()))
                     break;
                 extended = true;

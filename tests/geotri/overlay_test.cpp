@@ -686,7 +686,8 @@ int expect_rays_find_the_patch(const GeodesicTriangulation& g, const std::string
             ++inside;
             EXPECT_EQ(holders, std::vector<OpenMesh::FaceHandle>{*found}) << geodesic::to_spec(p);
             // Among the neighbours of its patch only: in none of them.
-            std::vector<OpenMesh::FaceHandle> neighbours(coarse.ff_range(*found).begin(), coarse.ff_range(*found).end());
+            std::vector<OpenMesh::FaceHandle> neighbours;
+            for (auto n : coarse.ff_range(*found)) neighbours.push_back(n);
             const std::optional<OpenMesh::FaceHandle> among = detail::patch_holding(g, neighbours, p);
             if (among) {
                 EXPECT_FALSE(among->is_valid()) << geodesic::to_spec(p);
