@@ -211,8 +211,9 @@ public:
                 const std::array<int, 3> vertices = vertices_of(coarse, f);
                 if (vertices != cached_vertices[i]) {  // a split or a flip changed it
                     cached_vertices[i] = vertices;
-                    cached_min[i] = smallest_corner(f);
-                    cached_max[i] = largest_corner(f);
+                    const CornerRange range = corner_range(f);
+                    cached_min[i] = range.smallest;
+                    cached_max[i] = range.largest;
                 }
                 if (given_up.count(vertices)) continue;
                 if (cached_max[i] > k_max_corner &&
@@ -222,13 +223,13 @@ public:
                 ++below;
                 if (!worst.is_valid() || cached_min[i] < cached_min[static_cast<std::size_t>(worst.idx())]) worst = f;
             }
-            if (cap_reached()) {  // unless nearly done (k_nearly_done): then once more as many
-                if (extended || static_cast<double>(below) >= k_nearly_done * static_cast<double>(coarse.n_faces()))
-                    break;
+            // Nearly done at the default cap (k_nearly_done): once more as many.
+            if (!extended && new_vertices_ >= budget_ &&
+                static_cast<double>(below) < k_nearly_done * static_cast<double>(coarse.n_faces())) {
                 extended = true;
                 budget_ *= 2;
-                result_.vertex_cap_reached = false;
             }
+            if (cap_reached()) break;
             if (!worst.is_valid()) {
                 // No triangle is left below the angle but those given up: then the corners above k_max_corner.
                 if (!widest.is_valid()) break;
@@ -274,25 +275,26 @@ private:
 
     bool exempt(VertexHandle v) const { return cone_angle(g_.fine().mesh, g_.location(v)) < 3.0 * min_angle_; }
 
-    /// The smallest corner of f that is not exempt, or infinity; infinity too for a face too small to refine.
-    double smallest_corner(FaceHandle f) const {
-        double smallest = std::numeric_limits<double>::infinity(), shortest = smallest;
+    /// f's smallest corner that is not exempt (or infinity) and its largest corner, in one pass over its corners;
+    /// infinity and 0 for a face too small to refine.
+    struct CornerRange {
+        double smallest = std::numeric_limits<double>::infinity();
+        double largest = 0.0;
+    };
+    CornerRange corner_range(FaceHandle f) const {
+        CornerRange range;
+        double shortest = std::numeric_limits<double>::infinity();
         for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
             shortest = std::min(shortest, g_.length(g_.coarse().edge_handle(h)));
-            if (!exempt(g_.coarse().from_vertex_handle(h))) smallest = std::min(smallest, corner_angle(g_, h));
+            const double corner = corner_angle(g_, h);
+            if (!exempt(g_.coarse().from_vertex_handle(h))) range.smallest = std::min(range.smallest, corner);
+            range.largest = std::max(range.largest, corner);
         }
-        return shortest < min_edge_of(f) ? std::numeric_limits<double>::infinity() : smallest;
+        return shortest < min_edge_of(f) ? CornerRange{} : range;
     }
 
-    /// The largest corner of f, or 0 for a face too small to refine.
-    double largest_corner(FaceHandle f) const {
-        double largest = 0.0, shortest = std::numeric_limits<double>::infinity();
-        for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
-            shortest = std::min(shortest, g_.length(g_.coarse().edge_handle(h)));
-            largest = std::max(largest, corner_angle(g_, h));
-        }
-        return shortest < min_edge_of(f) ? 0.0 : largest;
-    }
+    /// The smallest corner of f that is not exempt, or infinity; infinity too for a face too small to refine.
+    double smallest_corner(FaceHandle f) const { return corner_range(f).smallest; }
 
     /// Cuts f's corners above k_max_corner in two: splits the edge opposite each, the widest first, else inserts f's
     /// circumcentre; only where every corner that changes is at least the minimum angle, so that mending them never
