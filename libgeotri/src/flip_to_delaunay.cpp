@@ -234,6 +234,13 @@ private:
 
 /// How far untangling moves a coarse vertex: to the vertices of T within this many edges of it.
 constexpr int k_relocation_rings = 2;
+/// How far untangling moves a vertex when nothing nearer helps: on a torus decimated to its coarsest (rotor,
+/// eight), the vertex that winds twice needs a move of 3-6 fine edges.
+constexpr int k_wide_relocation_rings = 6;
+/// The last resorts of untangling (pairs of flips, wider moves) are tried only when at most this many violations
+/// of conditions 1-3 are left: there are many of them, and where hundreds of violations are stuck (cheese) they
+/// cost minutes and leave it invalid all the same.
+constexpr int k_max_last_resort_violations = 16;
 
 /// Rounds of fork splits in one chain (try_fork_chain in untangle()): chains seen on real meshes take three.
 constexpr int k_max_fork_chain_rounds = 8;
@@ -412,7 +419,7 @@ struct Move {
 };
 
 /// The kinds of untangling moves, for their keys.
-enum MoveKind : int { k_flip, k_fork_split, k_fork_chain, k_meeting_split, k_collapse, k_relocate };
+enum MoveKind : int { k_flip, k_fork_split, k_fork_chain, k_meeting_split, k_collapse, k_relocate, k_flip_pair };
 
 /// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
 class Untangler {
@@ -523,7 +530,8 @@ private:
 };
 
 /// Untangles by single flips, where no flip helps by fork splits, then by edge collapses, then by moving vertices,
-/// while they strictly lower the number of violations (see lowers_violations()), which bounds their number.
+/// and with a few violations left by pairs of flips and longer moves, while they strictly lower the number of
+/// violations (see lowers_violations()), which bounds their number.
 /// `report` is validate(g) on entry and on exit.
 void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
               ValidationReport& report) {
@@ -627,11 +635,15 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     };
     // A coarse vertex on the wrong side of a thin wall or a small handle has geodesics that wind around it twice,
     // whatever its edges: moved a little, to a vertex of T nearby, its new geodesics may wind once.
-    auto try_relocations = [&] {
+    // `rings` fine edges away at most, and more than `inner`: nearby_fine_vertices() lists the nearest rings first.
+    auto try_relocations = [&](const std::vector<int>& vertices, int rings, int inner) {
         std::vector<Move> moves;
-        for (int index : candidate_vertices(g.coarse(), report)) {
+        for (int index : vertices) {
             const OpenMesh::VertexHandle v(index);
-            for (int to : nearby_fine_vertices(g, v, k_relocation_rings)) {
+            const std::vector<int> nearby = nearby_fine_vertices(g, v, rings);
+            const std::size_t tried = inner > 0 ? nearby_fine_vertices(g, v, inner).size() : 0;
+            for (auto it = nearby.begin() + static_cast<std::ptrdiff_t>(tried); it != nearby.end(); ++it) {
+                const int to = *it;
                 auto run = [v, to](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                    const CountViolations&) {
                     RelocateOptions unchecked;
@@ -644,13 +656,40 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         }
         return untangler.keep_first_better(moves, result.untangle_relocations);
     };
+    // Two tangled faces side by side can need two flips where either alone changes nothing that is counted (the
+    // other face still tangles the same geodesics): the second flip is of an edge of a face of the first edge.
+    auto try_flip_pairs = [&] {
+        std::vector<Move> moves;
+        const CoarseMesh& coarse = g.coarse();
+        for (int index : candidate_edges(coarse, report)) {
+            const EdgeHandle first(index);
+            if (coarse.is_boundary(first) || !coarse.is_flip_ok(first)) continue;
+            for (int side = 0; side < 2; ++side)
+                for (EdgeHandle second : coarse.fe_range(coarse.face_handle(coarse.halfedge_handle(first, side)))) {
+                    if (second == first || coarse.is_boundary(second)) continue;
+                    auto run = [first, second](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
+                                               const CountViolations&) {
+                        FlipOptions unchecked;
+                        unchecked.check_validity = false;
+                        unchecked.propagation = &propagation;
+                        if (!flip(trial, first, unchecked).accepted()) return 0;
+                        return flip(trial, second, unchecked).accepted() ? 2 : 0;
+                    };
+                    moves.push_back({run, {k_flip_pair, first.idx(), second.idx()}});
+                }
+        }
+        return untangler.keep_first_better(moves, result.untangle_flips);
+    };
     int round = 0;
     while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_meeting_splits +
                                     result.untangle_collapses + result.untangle_relocations <
                                 options.max_untangle_operations) {
         ++round;
         if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_meeting_splits() && !try_collapses() &&
-            !try_relocations()) {
+            !try_relocations(candidate_vertices(g.coarse(), report), k_relocation_rings, 0) &&
+            (cheap_count(report) > k_max_last_resort_violations ||
+             (!try_flip_pairs() &&
+              !try_relocations(candidate_vertices(g.coarse(), report), k_wide_relocation_rings, k_relocation_rings)))) {
             result.untangle_stuck = true;
             break;
         }

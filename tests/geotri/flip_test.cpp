@@ -432,5 +432,54 @@ TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_
               << r.untangle_fork_splits << " fork splits, " << r.seconds << " s\n";
 }
 
+TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_nothing_else_helps) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the test needs cad/rotor.off, classic/eight.off and stress/42400-IDGH.stl";
+    // Traced in the decimation's classes, as the pipeline does. At the coarsest level of rotor and eight, a vertex
+    // whose geodesics wind twice must move 3-6 fine edges; at 320 faces, two tangles of 42400-IDGH each need two
+    // flips of one face's edges, where either flip alone leaves the count as it is. Untangling was stuck on all
+    // three before these moves.
+    struct Case {
+        std::string name;
+        bool coarsest;
+    };
+    for (const Case& c : {Case{"cad/rotor.off", true}, Case{"classic/eight.off", true},
+                          Case{"stress/42400-IDGH.stl", false}}) {
+        auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh(c.name).path));
+        DecimateOptions options;
+        if (c.coarsest)
+            options.coarsest = true;
+        else
+            options.target_faces = 320;
+        const DecimateResult decimated = decimate(*fine, options);
+        const EdgePaths paths = make_edge_paths(*fine, decimated);
+        GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, c.name));
+        TraceOptions trace_options;
+        trace_options.edge_paths = &paths;
+        trace(traced, trace_options);
+
+        GeodesicTriangulation g = traced;
+        const FlipToDelaunayResult r = flip_to_delaunay(g);
+        const ValidationReport check = validate(g);
+        EXPECT_FALSE(r.valid_before) << c.name;
+        EXPECT_TRUE(r.valid_after) << c.name << ":\n" << describe(check);
+        EXPECT_TRUE(check.valid) << c.name;
+        EXPECT_NEAR(check.patch_area, check.fine_area, 1e-9 * check.fine_area) << c.name;
+        for (int threads : {1, 3}) {
+            GeodesicTriangulation again = traced;
+            FlipToDelaunayOptions with;
+            with.threads = threads;
+            flip_to_delaunay(again, with);
+            ASSERT_EQ(again.coarse().n_edges(), g.coarse().n_edges()) << c.name << ", " << threads << " threads";
+            for (auto e : g.coarse().edges())
+                EXPECT_EQ(again.polyline(e), g.polyline(e)) << c.name << ", " << threads << " threads";
+        }
+        std::cout << "[ flip     ] " << c.name << (c.coarsest ? " at the coarsest level: " : " at 320 faces: ")
+                  << total(r.violations_before) << " -> " << total(r.violations_after) << " violations, "
+                  << r.untangle_flips << " flips, " << r.untangle_relocations << " moves, " << r.seconds << " s\n";
+    }
+}
+
 }  // namespace
 }  // namespace geotri

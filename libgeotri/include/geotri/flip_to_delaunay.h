@@ -60,7 +60,8 @@ struct FlipToDelaunayResult {
     // Untangling's moves that strictly lowered the violation count, by kind (each kind where the ones before it
     // did not help): flips, fork splits (split_fork(), singly or in chains), splits of an edge where another meets
     // it at a vertex of T (split_edge_at_point()), edge collapses (collapse_edge()) and vertex moves
-    // (relocate_vertex()). A single split counts as one move with the flips around its new vertex that follow it.
+    // (relocate_vertex()). A single split counts as one move with the flips around its new vertex that follow it;
+    // a pair of flips counts as two flips.
     int untangle_flips = 0;
     int untangle_fork_splits = 0;
     int untangle_meeting_splits = 0;
@@ -88,7 +89,8 @@ struct FlipToDelaunayResult {
 /// Untangles G, then improves it (as options say). Untangle: while G is invalid, flip the edges involved in
 /// violations (named by validate(), or at a vertex or face it names); where no flip helps, split the forks at the
 /// vertices involved (split_fork(), singly, then as a chain), collapse them into a neighbour (collapse_edge()), or
-/// move them to a vertex of T nearby (relocate_vertex()); an operation is kept only when it strictly lowers the
+/// move them to a vertex of T nearby (relocate_vertex()); with a few violations left and nothing else helping, flip
+/// two edges of one face together, or move a vertex further; an operation is kept only when it strictly lowers the
 /// number of violations of conditions 1-3, or, with none left, that of condition 4; it stops when G is valid or no
 /// such operation is left. Trials run in parallel, and the first that helps in a fixed order is kept. Improve (only
 /// on a valid G): sweeps over the edges, flipping by the criterion with plan_flip()'s local checks, until a sweep
