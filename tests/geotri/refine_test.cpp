@@ -226,6 +226,19 @@ TEST(Refine, a_refinement_nearly_done_at_the_vertex_cap_goes_on) {
     expect_valid_with_area(g);
 }
 
+// At 30 degrees on boxpart, the last triangle below the angle can only be mended by taking out a vertex that
+// refinement itself inserted; before the vertices inserted became removable, it was given up at 29.3 degrees.
+TEST(Refine, a_vertex_that_refinement_inserted_is_taken_out_where_only_that_mends_a_face) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    GeodesicTriangulation g = traced(test::shared_mesh("cad/boxpart.obj").path, 320);
+    flip_to_delaunay(g);
+    RefineResult r;
+    check_min_angle(g, 30.0, "boxpart, 320 faces", &r);
+    EXPECT_GE(r.removed_vertices, 1);
+}
+
 // The bundled joint has chamfers a tenth of a fine edge long on average, and decimation keeps coarse vertices at
 // their corners. Refinement refused to refine triangles with an edge shorter than a tenth of T's mean edge, so it
 // left corners of 11 degrees next to them (19 at 30 degrees); it now refines down to the scale of such edges of

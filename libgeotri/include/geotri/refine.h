@@ -30,8 +30,10 @@ struct RefineOptions {
     /// While raising the minimum angle, a vertex of the G given (not one that refinement added) at an end of the
     /// worst triangle's shortest edge may be taken out, its star reconnected (reconnect_vertex()), when every
     /// corner around there is then at least the minimum angle: vertices that decimation left close together make
-    /// corners that circumcentres mend only with many small triangles. Vertices at curved points of T (whose cone
-    /// angle differs from 2π by more than a third of the minimum angle) are always kept.
+    /// corners that circumcentres mend only with many small triangles. When only triangles that refinement gave up
+    /// on are left below the angle, this is done once more with the vertices added so far removable too. Vertices
+    /// at curved points of T (whose cone angle differs from 2π by more than a third of the minimum angle) are
+    /// always kept.
     bool remove_vertices = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
@@ -48,7 +50,7 @@ struct RefineResult {
     int edge_splits = 0;               ///< bisections, and circumcentres that fell on an edge
     int face_splits = 0;               ///< circumcentres inserted inside a patch
     int refused_splits = 0;            ///< splits that split_edge() or split_face() refused (G kept as it was)
-    int removed_vertices = 0;          ///< vertices of the G given taken out (RefineOptions::remove_vertices)
+    int removed_vertices = 0;          ///< vertices taken out (RefineOptions::remove_vertices)
     int flips = 0;
     int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
     int small_corners_left = 0;        ///< other corners below the minimum angle, where refinement gave up
