@@ -636,9 +636,9 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     // A coarse vertex on the wrong side of a thin wall or a small handle has geodesics that wind around it twice,
     // whatever its edges: moved a little, to a vertex of T nearby, its new geodesics may wind once.
     // `rings` fine edges away at most, and more than `inner`: nearby_fine_vertices() lists the nearest rings first.
-    auto try_relocations = [&](const std::vector<int>& vertices, int rings, int inner) {
+    auto try_relocations = [&](int rings, int inner) {
         std::vector<Move> moves;
-        for (int index : vertices) {
+        for (int index : candidate_vertices(g.coarse(), report)) {
             const OpenMesh::VertexHandle v(index);
             const std::vector<int> nearby = nearby_fine_vertices(g, v, rings);
             const std::size_t tried = inner > 0 ? nearby_fine_vertices(g, v, inner).size() : 0;
@@ -686,10 +686,9 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                                 options.max_untangle_operations) {
         ++round;
         if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_meeting_splits() && !try_collapses() &&
-            !try_relocations(candidate_vertices(g.coarse(), report), k_relocation_rings, 0) &&
+            !try_relocations(k_relocation_rings, 0) &&
             (cheap_count(report) > k_max_last_resort_violations ||
-             (!try_flip_pairs() &&
-              !try_relocations(candidate_vertices(g.coarse(), report), k_wide_relocation_rings, k_relocation_rings)))) {
+             (!try_flip_pairs() && !try_relocations(k_wide_relocation_rings, k_relocation_rings)))) {
             result.untangle_stuck = true;
             break;
         }
