@@ -231,19 +231,19 @@ public:
                 budget_ *= 2;
             }
             if (cap_reached()) break;
+            if (!worst.is_valid() && !widest.is_valid()) {
+                // A vertex that refinement inserted can stand in the way of a face given up, where only a removal
+                // mends it (boxpart at 30 degrees): once, the vertices inserted so far become removable too, and
+                // the faces given up are tried again.
+                if (given_up.empty() || all_removable) break;
+                all_removable = true;
+                given_.clear();
+                for (VertexHandle v : coarse.vertices()) given_.push_back(g_.location(v));
+                given_up.clear();
+                continue;
+            }
             if (!worst.is_valid()) {
                 // No triangle is left below the angle but those given up: then the corners above k_max_corner.
-                if (!widest.is_valid()) {
-                    // A vertex that refinement inserted can stand in the way of a face given up, where only a
-                    // removal mends it (boxpart at 30 degrees): once, the vertices inserted so far become
-                    // removable too, and the faces given up are tried again.
-                    if (given_up.empty() || all_removable) break;
-                    all_removable = true;
-                    given_.clear();
-                    for (VertexHandle v : coarse.vertices()) given_.push_back(g_.location(v));
-                    given_up.clear();
-                    continue;
-                }
                 if (!mend_wide_corners(widest)) given_up.insert(vertices_of(coarse, widest));
                 progress("corners above 180 degrees");
                 continue;
