@@ -410,6 +410,19 @@ ValidationReport without_condition_4(ValidationReport report) {
     return report;
 }
 
+/// `report` with only the violations that name a coarse vertex at one of the locations `focus`.
+ValidationReport violations_naming(const GeodesicTriangulation& g, ValidationReport report,
+                                   const std::vector<SurfacePoint>& focus) {
+    auto elsewhere = [&](const Violation& v) {
+        return std::none_of(v.coarse_vertices.begin(), v.coarse_vertices.end(), [&](int c) {
+            return std::find(focus.begin(), focus.end(), g.location(OpenMesh::VertexHandle(c))) != focus.end();
+        });
+    };
+    report.violations.erase(std::remove_if(report.violations.begin(), report.violations.end(), elsewhere),
+                            report.violations.end());
+    return report;
+}
+
 /// One untangling move: `run` does it on a copy of G with the propagation object of its thread, and returns how
 /// many operations it did (0: not possible there); a move of several steps can judge them with the count it is
 /// given. `key` names it by kind and coarse vertices.
@@ -419,7 +432,16 @@ struct Move {
 };
 
 /// The kinds of untangling moves, for their keys.
-enum MoveKind : int { k_flip, k_fork_split, k_fork_chain, k_meeting_split, k_collapse, k_relocate, k_flip_pair };
+enum MoveKind : int {
+    k_flip,
+    k_fork_split,
+    k_fork_chain,
+    k_meeting_split,
+    k_collapse,
+    k_relocate,
+    k_flip_pair,
+    k_collapse_and_untangle
+};
 
 /// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
 class Untangler {
@@ -492,7 +514,8 @@ public:
                     recount();
                     kept += t.operations;
                     // A collapse renumbers the coarse vertices, and with them the keys.
-                    if (moves[first + i].key[0] == k_collapse) failed_.clear();
+                    if (moves[first + i].key[0] == k_collapse || moves[first + i].key[0] == k_collapse_and_untangle)
+                        failed_.clear();
                     return true;
                 }
                 ++(t.operations == 0 ? result_.untangle_refused : result_.untangle_rejected);
@@ -530,16 +553,20 @@ private:
 };
 
 /// Untangles by single flips, where no flip helps by fork splits, then by edge collapses, then by moving vertices,
-/// and with a few violations left by pairs of flips and longer moves, while they strictly lower the number of
-/// violations (see lowers_violations()), which bounds their number.
+/// and with a few violations left by pairs of flips and longer moves (and with FlipToDelaunayOptions::thorough,
+/// collapses judged after untangling), while they strictly lower the number of violations (see
+/// lowers_violations()), which bounds their number. With a `focus`, moves are sought only for the violations that
+/// name a coarse vertex at one of its locations, and without the last resorts.
 /// `report` is validate(g) on entry and on exit.
 void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
-              ValidationReport& report) {
+              ValidationReport& report, const std::vector<SurfacePoint>* focus = nullptr) {
     if (cheap_count(report) > 0) report = without_condition_4(std::move(report));
     Untangler untangler(g, report, options, result);
+    // The violations that moves are sought for: all, or with a focus those that name a coarse vertex there.
+    ValidationReport named;
     auto try_flips = [&] {
         std::vector<Move> moves;
-        for (int index : candidate_edges(g.coarse(), report)) {
+        for (int index : candidate_edges(g.coarse(), named)) {
             const EdgeHandle e(index);
             if (g.coarse().is_boundary(e) || !g.coarse().is_flip_ok(e)) continue;
             const int a = g.coarse().to_vertex_handle(g.coarse().halfedge_handle(e, 0)).idx();
@@ -561,7 +588,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     };
     auto try_fork_splits = [&] {
         std::vector<Move> moves;
-        for (int index : candidate_vertices(g.coarse(), report))
+        for (int index : candidate_vertices(g.coarse(), named))
             for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(index))) {
                 auto run = [fork, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                                  const CountViolations& count) {
@@ -576,7 +603,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     // again at the next vertex, and no single split lowers the count. The chain splits a fork at every vertex that
     // the violations name, round after round while there are any, and is judged as one move.
     auto try_fork_chain = [&] {
-        const ValidationReport& start = report;
+        const ValidationReport& start = named;
         auto chain = [&start, split_options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                              const CountViolations&) {
             ValidationOptions cheap;
@@ -602,7 +629,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     // no flip parts them: a coarse vertex there, splitting one of them, settled (settle_around()), may.
     auto try_meeting_splits = [&] {
         std::vector<Move> moves;
-        for (const auto& [e, index] : meetings_at_fine_vertices(g, report)) {
+        for (const auto& [e, index] : meetings_at_fine_vertices(g, named)) {
             auto run = [e = e, index = index, split_options](GeodesicTriangulation& trial,
                                                             geodesic::ExactGeodesic& propagation,
                                                             const CountViolations& count) {
@@ -619,7 +646,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     // joined to the vertex it merges into by new shortest geodesics.
     auto try_collapses = [&] {
         std::vector<Move> moves;
-        for (int index : candidate_vertices(g.coarse(), report))
+        for (int index : candidate_vertices(g.coarse(), named))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index)))
             {
                 auto run = [h](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
@@ -638,7 +665,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     // `rings` fine edges away at most, and more than `inner`: nearby_fine_vertices() lists the nearest rings first.
     auto try_relocations = [&](int rings, int inner) {
         std::vector<Move> moves;
-        for (int index : candidate_vertices(g.coarse(), report)) {
+        for (int index : candidate_vertices(g.coarse(), named)) {
             const OpenMesh::VertexHandle v(index);
             const std::vector<int> nearby = nearby_fine_vertices(g, v, rings);
             const std::size_t tried = inner > 0 ? nearby_fine_vertices(g, v, inner).size() : 0;
@@ -661,7 +688,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     auto try_flip_pairs = [&] {
         std::vector<Move> moves;
         const CoarseMesh& coarse = g.coarse();
-        for (int index : candidate_edges(coarse, report)) {
+        for (int index : candidate_edges(coarse, named)) {
             const EdgeHandle first(index);
             if (coarse.is_boundary(first) || !coarse.is_flip_ok(first)) continue;
             for (int side = 0; side < 2; ++side)
@@ -680,15 +707,50 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         }
         return untangler.keep_first_better(moves, result.untangle_flips);
     };
+    // A collapse that raises the count can still be the way out (skull_thing74168, anchor_dense and boxpart at
+    // their coarsest): each is judged after untangling what it leaves, with moves sought only for the violations
+    // around the vertex kept, and without last resorts.
+    auto try_collapse_and_untangle = [&] {
+        std::vector<Move> moves;
+        for (int index : candidate_vertices(g.coarse(), named))
+            for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) {
+                auto run = [h, &options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
+                                         const CountViolations&) {
+                    CollapseOptions unchecked;
+                    unchecked.check_validity = false;
+                    unchecked.propagation = &propagation;
+                    const CollapseResult done = collapse_edge(trial, h, unchecked);
+                    if (!done.done) return 0;
+                    std::vector<SurfacePoint> around{trial.location(done.kept)};
+                    for (OpenMesh::VertexHandle u : trial.coarse().vv_range(done.kept))
+                        around.push_back(trial.location(u));
+                    FlipToDelaunayOptions inner = options;
+                    inner.threads = 1;  // the trials run in parallel already
+                    inner.progress = nullptr;
+                    FlipToDelaunayResult inner_result;
+                    ValidationReport inner_report = validate(trial);
+                    untangle(trial, inner, inner_result, inner_report, &around);
+                    return 1;  // one collapse, with the moves that follow it
+                };
+                moves.push_back({run, {k_collapse_and_untangle, index, g.coarse().to_vertex_handle(h).idx()}});
+            }
+        return untangler.keep_first_better(moves, result.untangle_collapses);
+    };
     int round = 0;
     while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_meeting_splits +
                                     result.untangle_collapses + result.untangle_relocations <
                                 options.max_untangle_operations) {
         ++round;
+        named = focus ? violations_naming(g, report, *focus) : report;
+        if (focus && named.violations.empty()) {  // what is left is elsewhere
+            result.untangle_stuck = true;
+            break;
+        }
         if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_meeting_splits() && !try_collapses() &&
             !try_relocations(k_relocation_rings, 0) &&
-            (cheap_count(report) > k_max_last_resort_violations ||
-             (!try_flip_pairs() && !try_relocations(k_wide_relocation_rings, k_relocation_rings)))) {
+            (focus || cheap_count(report) > k_max_last_resort_violations ||
+             (!try_flip_pairs() && !try_relocations(k_wide_relocation_rings, k_relocation_rings) &&
+              (!options.thorough || !try_collapse_and_untangle())))) {
             result.untangle_stuck = true;
             break;
         }

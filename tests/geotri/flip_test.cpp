@@ -481,5 +481,47 @@ TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_n
     }
 }
 
+TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only_after_untangling_around_it) {
+    const char* name = "stress/anchor_dense.off";
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir() << "': the test needs "
+                     << name;
+    // At its coarsest, untangling anchor_dense is stuck: no single move lowers the count, and no collapse does
+    // until what it leaves is untangled around the vertex kept.
+    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh(name).path));
+    DecimateOptions options;
+    options.coarsest = true;
+    const DecimateResult decimated = decimate(*fine, options);
+    const EdgePaths paths = make_edge_paths(*fine, decimated);
+    GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, name));
+    TraceOptions trace_options;
+    trace_options.edge_paths = &paths;
+    trace(traced, trace_options);
+
+    GeodesicTriangulation plain = traced;
+    const FlipToDelaunayResult stuck = flip_to_delaunay(plain);
+    EXPECT_TRUE(stuck.untangle_stuck);
+    EXPECT_FALSE(stuck.valid_after);
+
+    FlipToDelaunayOptions thorough;
+    thorough.thorough = true;
+    thorough.threads = 1;
+    GeodesicTriangulation g = traced;
+    const FlipToDelaunayResult r = flip_to_delaunay(g, thorough);
+    const ValidationReport check = validate(g);
+    EXPECT_TRUE(r.valid_after) << describe(check);
+    EXPECT_TRUE(check.valid);
+    EXPECT_NEAR(check.patch_area, check.fine_area, 1e-9 * check.fine_area);
+
+    GeodesicTriangulation again = traced;
+    thorough.threads = 3;
+    flip_to_delaunay(again, thorough);
+    ASSERT_EQ(again.coarse().n_edges(), g.coarse().n_edges());
+    for (auto e : g.coarse().edges()) EXPECT_EQ(again.polyline(e), g.polyline(e)) << "3 threads";
+    std::cout << "[ flip     ] " << name << " at the coarsest level, thorough: " << total(r.violations_before)
+              << " -> " << total(r.violations_after) << " violations (" << total(stuck.violations_after)
+              << " without), " << r.untangle_collapses << " collapses, " << r.seconds << " s\n";
+}
+
 }  // namespace
 }  // namespace geotri
