@@ -1,7 +1,7 @@
 // geotri-flip: makes a geodesic triangulation valid by flips (untangle), then flips it towards geodesic Delaunay
 // (improve), and writes the result (issue 4).
 //
-//   geotri-flip IN.gtri -o OUT.gtri [--criterion angle|length] [--thorough] [--fine PATH] [--threads N] [--quiet] [--json]
+//   geotri-flip IN.gtri -o OUT.gtri [--criterion angle|length] [--thorough LEVEL] [--fine PATH] [--threads N] [--quiet] [--json]
 //
 // Exit codes: 0 when OUT is valid, 3 when OUT is written but still invalid, 1 bad input, 2 usage error.
 
@@ -48,10 +48,12 @@ int run(tools::Tool& tool) {
                    "angle: flip when that raises the minimum corner angle of the two triangles (default);\n"
                    "length: intrinsic Delaunay on the geodesic edge lengths")
         ->check(CLI::IsMember({"angle", "length"}));
-    bool thorough = false;
-    app.add_flag("--thorough", thorough,
-                 "Where untangling is stuck with few violations left, also try each edge collapse there judged after\n"
-                 "untangling what it leaves: mends some meshes at their coarsest, but can take minutes where it does not");
+    int thorough = 0;
+    app.add_option("--thorough", thorough,
+                   "Where untangling is stuck with few violations left, 1: also try each edge collapse there judged\n"
+                   "after untangling what it leaves; 2: then with that untangling ending with such collapses too.\n"
+                   "They mend some meshes, but can take minutes where they do not (default: 0, neither)")
+        ->check(CLI::Range(0, 2));
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
         ->check(CLI::ExistingFile);
     tool.parse();

@@ -440,7 +440,8 @@ enum MoveKind : int {
     k_collapse,
     k_relocate,
     k_flip_pair,
-    k_collapse_and_untangle
+    k_collapse_and_untangle,
+    k_collapse_and_untangle_nested
 };
 
 /// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
@@ -514,7 +515,8 @@ public:
                     recount();
                     kept += t.operations;
                     // A collapse renumbers the coarse vertices, and with them the keys.
-                    if (moves[first + i].key[0] == k_collapse || moves[first + i].key[0] == k_collapse_and_untangle)
+                    if (moves[first + i].key[0] == k_collapse || moves[first + i].key[0] == k_collapse_and_untangle ||
+                        moves[first + i].key[0] == k_collapse_and_untangle_nested)
                         failed_.clear();
                     return true;
                 }
@@ -556,7 +558,8 @@ private:
 /// and with a few violations left by pairs of flips and longer moves (and with FlipToDelaunayOptions::thorough,
 /// collapses judged after untangling), while they strictly lower the number of violations (see
 /// lowers_violations()), which bounds their number. With a `focus`, moves are sought only for the violations that
-/// name a coarse vertex at one of its locations, and without the last resorts.
+/// name a coarse vertex at one of its locations, and of the last resorts only the collapses judged after
+/// untangling are tried, and only where `options.thorough` asks for them.
 /// `report` is validate(g) on entry and on exit.
 void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
               ValidationReport& report, const std::vector<SurfacePoint>* focus = nullptr) {
@@ -709,13 +712,14 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     };
     // A collapse that raises the count can still be the way out (skull_thing74168, anchor_dense and boxpart at
     // their coarsest): each is judged after untangling what it leaves, with moves sought only for the violations
-    // around the vertex kept, and without last resorts.
-    auto try_collapse_and_untangle = [&] {
+    // around the vertex kept, and without the other last resorts; `nested`, that untangling may itself end with
+    // such collapses (femur_cgal at 320 faces).
+    auto try_collapse_and_untangle = [&](bool nested) {
         std::vector<Move> moves;
         for (int index : candidate_vertices(g.coarse(), named))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) {
-                auto run = [h, &options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
-                                         const CountViolations&) {
+                auto run = [h, nested, &options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
+                                                 const CountViolations&) {
                     CollapseOptions unchecked;
                     unchecked.check_validity = false;
                     unchecked.propagation = &propagation;
@@ -727,12 +731,14 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                     FlipToDelaunayOptions inner = options;
                     inner.threads = 1;  // the trials run in parallel already
                     inner.progress = nullptr;
+                    inner.thorough = nested ? 1 : 0;
                     FlipToDelaunayResult inner_result;
                     ValidationReport inner_report = validate(trial);
                     untangle(trial, inner, inner_result, inner_report, &around);
                     return 1;  // one collapse, with the moves that follow it
                 };
-                moves.push_back({run, {k_collapse_and_untangle, index, g.coarse().to_vertex_handle(h).idx()}});
+                const int kind = nested ? k_collapse_and_untangle_nested : k_collapse_and_untangle;
+                moves.push_back({run, {kind, index, g.coarse().to_vertex_handle(h).idx()}});
             }
         return untangler.keep_first_better(moves, result.untangle_collapses);
     };
@@ -748,9 +754,11 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         }
         if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_meeting_splits() && !try_collapses() &&
             !try_relocations(k_relocation_rings, 0) &&
-            (focus || cheap_count(report) > k_max_last_resort_violations ||
-             (!try_flip_pairs() && !try_relocations(k_wide_relocation_rings, k_relocation_rings) &&
-              (!options.thorough || !try_collapse_and_untangle())))) {
+            (focus ? options.thorough < 1 || !try_collapse_and_untangle(false)
+                   : cheap_count(report) > k_max_last_resort_violations ||
+                         (!try_flip_pairs() && !try_relocations(k_wide_relocation_rings, k_relocation_rings) &&
+                          (options.thorough < 1 || !try_collapse_and_untangle(false)) &&
+                          (options.thorough < 2 || !try_collapse_and_untangle(true))))) {
             result.untangle_stuck = true;
             break;
         }

@@ -31,11 +31,13 @@ struct FlipToDelaunayOptions {
     int max_improve_passes = 100;    ///< sweeps over every edge; improve stops after a sweep without a flip
     /// Flips, fork splits, collapses and moves: each strictly lowers the violation count, so this is only a guard.
     int max_untangle_operations = 10000;
-    /// Untangling, where nothing else helps with at most 16 violations of conditions 1-3 left: also try each collapse
-    /// of an edge at a vertex that they name, judged after untangling what it leaves around the vertex kept. Made
-    /// three more meshes valid at their coarsest (skull_thing74168, anchor_dense, boxpart: 5-22 s each), but where it
-    /// mends nothing it costs up to minutes (gears at its coarsest: 8 s without, 124 s with, invalid either way).
-    bool thorough = false;
+    /// Untangling, where nothing else helps with at most 16 violations of conditions 1-3 left: 1, also try each
+    /// collapse of an edge at a vertex that they name, judged after untangling what it leaves around the vertex
+    /// kept; 2, then again with that untangling itself ending with such collapses where it is stuck. 1 made three
+    /// more meshes valid at their coarsest (skull_thing74168, anchor_dense, boxpart: 5-23 s each) and 2 femur_cgal
+    /// at 320 faces, but where they mend nothing they cost minutes (gears at its coarsest: 8 s with 0, 144 s with
+    /// 1, invalid either way), and 2 more than 1. 0: neither.
+    int thorough = 0;
     /// Improve: when the shortest c-d geodesic leaves the two patches, try the shortest path inside them.
     bool region_fallback = true;
     /// For untangling's trials and improve's evaluations; 0: as many as OpenMP likes. The result is the same for
