@@ -395,6 +395,24 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
     std::cout << "[ flip     ] " << made_valid << " of " << invalid << " invalid traced G became valid\n";
 }
 
+/// `name` from the shared meshes, decimated to its coarsest or to 320 faces and traced in the decimation's classes,
+/// as the pipeline does.
+GeodesicTriangulation traced_as_the_pipeline_does(const std::string& name, bool coarsest) {
+    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh(name).path));
+    DecimateOptions options;
+    if (coarsest)
+        options.coarsest = true;
+    else
+        options.target_faces = 320;
+    const DecimateResult decimated = decimate(*fine, options);
+    const EdgePaths paths = make_edge_paths(*fine, decimated);
+    GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, name));
+    TraceOptions trace_options;
+    trace_options.edge_paths = &paths;
+    trace(traced, trace_options);
+    return traced;
+}
+
 TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_t) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
@@ -402,15 +420,7 @@ TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_
     // boxpart at the coarsest level, traced in the decimation's classes (as the pipeline does): geodesics of
     // different vertices pass through the same saddles of T there, and only splits at those meetings lower the count.
     const std::string name = "cad/boxpart.obj";
-    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh(name).path));
-    DecimateOptions options;
-    options.coarsest = true;
-    const DecimateResult decimated = decimate(*fine, options);
-    const EdgePaths paths = make_edge_paths(*fine, decimated);
-    GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, name));
-    TraceOptions trace_options;
-    trace_options.edge_paths = &paths;
-    trace(traced, trace_options);
+    const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
 
     GeodesicTriangulation g = traced;
     const FlipToDelaunayResult r = flip_to_delaunay(g);
@@ -446,18 +456,7 @@ TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_n
     };
     for (const Case& c : {Case{"cad/rotor.off", true}, Case{"classic/eight.off", true},
                           Case{"stress/42400-IDGH.stl", false}}) {
-        auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh(c.name).path));
-        DecimateOptions options;
-        if (c.coarsest)
-            options.coarsest = true;
-        else
-            options.target_faces = 320;
-        const DecimateResult decimated = decimate(*fine, options);
-        const EdgePaths paths = make_edge_paths(*fine, decimated);
-        GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, c.name));
-        TraceOptions trace_options;
-        trace_options.edge_paths = &paths;
-        trace(traced, trace_options);
+        const GeodesicTriangulation traced = traced_as_the_pipeline_does(c.name, c.coarsest);
 
         GeodesicTriangulation g = traced;
         const FlipToDelaunayResult r = flip_to_delaunay(g);
@@ -488,15 +487,7 @@ TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only
                      << name;
     // At its coarsest, untangling anchor_dense is stuck: no single move lowers the count, and no collapse does
     // until what it leaves is untangled around the vertex kept.
-    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh(name).path));
-    DecimateOptions options;
-    options.coarsest = true;
-    const DecimateResult decimated = decimate(*fine, options);
-    const EdgePaths paths = make_edge_paths(*fine, decimated);
-    GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, name));
-    TraceOptions trace_options;
-    trace_options.edge_paths = &paths;
-    trace(traced, trace_options);
+    const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
 
     GeodesicTriangulation plain = traced;
     const FlipToDelaunayResult stuck = flip_to_delaunay(plain);
@@ -530,15 +521,7 @@ TEST(FlipToDelaunay, thorough_untangling_at_level_2_nests_those_collapses_and_ma
                      << name;
     // Around its tiny handles, level 1 takes femur_cgal from 16 violations to 3 and sticks; level 2 goes on with
     // collapses whose untangling may itself end with such collapses.
-    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh(name).path));
-    DecimateOptions options;
-    options.target_faces = 320;
-    const DecimateResult decimated = decimate(*fine, options);
-    const EdgePaths paths = make_edge_paths(*fine, decimated);
-    GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, name));
-    TraceOptions trace_options;
-    trace_options.edge_paths = &paths;
-    trace(traced, trace_options);
+    const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, false);
 
     FlipToDelaunayOptions thorough;
     thorough.thorough = 1;
