@@ -515,8 +515,8 @@ public:
                     recount();
                     kept += t.operations;
                     // A collapse renumbers the coarse vertices, and with them the keys.
-                    if (moves[first + i].key[0] == k_collapse || moves[first + i].key[0] == k_collapse_and_untangle ||
-                        moves[first + i].key[0] == k_collapse_and_untangle_nested)
+                    const int kind = moves[first + i].key[0];
+                    if (kind == k_collapse || kind == k_collapse_and_untangle || kind == k_collapse_and_untangle_nested)
                         failed_.clear();
                     return true;
                 }
@@ -742,6 +742,15 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
             }
         return untangler.keep_first_better(moves, result.untangle_collapses);
     };
+    // Only where nothing above helps and few violations are left; with a focus, only the collapses judged after
+    // untangling, and only where asked for.
+    auto try_last_resorts = [&] {
+        if (focus) return options.thorough >= 1 && try_collapse_and_untangle(false);
+        if (cheap_count(report) > k_max_last_resort_violations) return false;
+        return try_flip_pairs() || try_relocations(k_wide_relocation_rings, k_relocation_rings) ||
+               (options.thorough >= 1 && try_collapse_and_untangle(false)) ||
+               (options.thorough >= 2 && try_collapse_and_untangle(true));
+    };
     int round = 0;
     while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_meeting_splits +
                                     result.untangle_collapses + result.untangle_relocations <
@@ -753,12 +762,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
             break;
         }
         if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_meeting_splits() && !try_collapses() &&
-            !try_relocations(k_relocation_rings, 0) &&
-            (focus ? options.thorough < 1 || !try_collapse_and_untangle(false)
-                   : cheap_count(report) > k_max_last_resort_violations ||
-                         (!try_flip_pairs() && !try_relocations(k_wide_relocation_rings, k_relocation_rings) &&
-                          (options.thorough < 1 || !try_collapse_and_untangle(false)) &&
-                          (options.thorough < 2 || !try_collapse_and_untangle(true))))) {
+            !try_relocations(k_relocation_rings, 0) && !try_last_resorts()) {
             result.untangle_stuck = true;
             break;
         }
