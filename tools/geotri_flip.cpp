@@ -107,6 +107,7 @@ int run(tools::Tool& tool) {
         summary.add("untangle_rejected", r.untangle_rejected);
         summary.add("untangle_refused", r.untangle_refused);
         summary.add("untangle_stuck", r.untangle_stuck);
+        summary.add("last_resorts_tried", r.last_resorts_tried);
         summary.add("improve_flips", r.improve_flips);
         summary.add("improve_passes", r.improve_passes);
         summary.add("improve_plans", r.improve_plans);
@@ -161,6 +162,9 @@ int run(tools::Tool& tool) {
             std::fprintf(stderr, "%s: %s is written but still invalid: %d violation%s left, the first: %s\n", program,
                          output.c_str(), total(r.violations_after), total(r.violations_after) == 1 ? "" : "s",
                          r.remaining.empty() ? "?" : r.remaining.front().what.c_str());
+            if (r.last_resorts_tried && thorough < 2)
+                std::fprintf(stderr, "%s: --thorough %d may mend it, at a cost of seconds to minutes\n", program,
+                             thorough + 1);
         }
     }
     return r.valid_after ? tools::k_exit_ok : k_exit_invalid;

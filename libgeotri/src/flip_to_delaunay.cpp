@@ -747,6 +747,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     auto try_last_resorts = [&] {
         if (focus) return options.thorough >= 1 && try_collapse_and_untangle(false);
         if (cheap_count(report) > k_max_last_resort_violations) return false;
+        result.last_resorts_tried = true;
         return try_flip_pairs() || try_relocations(k_wide_relocation_rings, k_relocation_rings) ||
                (options.thorough >= 1 && try_collapse_and_untangle(false)) ||
                (options.thorough >= 2 && try_collapse_and_untangle(true));

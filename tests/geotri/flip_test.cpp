@@ -492,6 +492,7 @@ TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only
     GeodesicTriangulation plain = traced;
     const FlipToDelaunayResult stuck = flip_to_delaunay(plain);
     EXPECT_TRUE(stuck.untangle_stuck);
+    EXPECT_TRUE(stuck.last_resorts_tried);  // geotri-flip then suggests --thorough
     EXPECT_FALSE(stuck.valid_after);
 
     FlipToDelaunayOptions thorough;

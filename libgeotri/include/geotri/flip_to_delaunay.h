@@ -77,6 +77,9 @@ struct FlipToDelaunayResult {
     int untangle_rejected = 0;   ///< moves tried that did not lower it (G kept as it was)
     int untangle_refused = 0;    ///< moves not possible there (not flippable, no geodesic, a refused split, ...)
     bool untangle_stuck = false; ///< untangling ended with violations left and no operation that lowers their count
+    /// Untangling was stuck with few enough violations left to try its last resorts (FlipToDelaunayOptions::thorough
+    /// adds some of them).
+    bool last_resorts_tried = false;
 
     int improve_flips = 0;
     int improve_plans = 0;          ///< flips computed (one propagation each) while improving
