@@ -5,12 +5,14 @@ minimum corner angle) and at the end (with the conditions that failed), and the 
 writing included. G is refined only when flip made it valid.
 
     bench/pipeline_sweep.py [--faces N] [--min-angle A] [--threads N] [--timeout S] [--build DIR] [--data DIR]
-                            [MESH ...]
+                            [--keep DIR] [MESH ...]
 
 Meshes whose topology needs more than N faces are decimated to the coarsest that it allows instead. The outputs
-go to a temporary folder that is removed at the end.
+go to a temporary folder that is removed at the end, or with --keep to DIR, where they stay (MESH.off, .paths,
+.gtri, .flip.gtri, .refine.gtri, .vtu, named by the mesh's file name without its extension).
 """
 import argparse
+import contextlib
 import json
 import pathlib
 import subprocess
@@ -129,6 +131,7 @@ def main():
     parser.add_argument("--timeout", type=float, default=TIMEOUT, help="stop a tool run after this many seconds")
     parser.add_argument("--build", type=pathlib.Path, default=ROOT / "build")
     parser.add_argument("--data", type=pathlib.Path, default=ROOT.parent / "shared" / "data")
+    parser.add_argument("--keep", type=pathlib.Path, help="write the outputs to this folder and keep them")
     options = parser.parse_args()
     options.data = options.data.resolve()
     TIMEOUT = options.timeout
@@ -139,7 +142,11 @@ def main():
     print("| mesh | faces | coarse faces | traced | flipped, min angle | refined | final | " +
           " | ".join(f"{stage} (s)" for stage in STAGES) + " | total (s) |")
     print("|---|---:|---:|---|---|---|---|" + "---:|" * (len(STAGES) + 1))
-    with tempfile.TemporaryDirectory(prefix="geotri-sweep-") as work:
+    if options.keep:
+        options.keep.mkdir(parents=True, exist_ok=True)
+    folder = (contextlib.nullcontext(options.keep) if options.keep
+              else tempfile.TemporaryDirectory(prefix="geotri-sweep-"))
+    with folder as work:
         for mesh in meshes:
             print(sweep_one(mesh.resolve(), options, pathlib.Path(work)), flush=True)
 
