@@ -39,6 +39,13 @@ constexpr double k_max_min_angle_deg = 35.0;
 // circumcentres laid out as if they were chase it with ever smaller triangles. Gently curved vertices (scanned
 // surfaces have them everywhere) are left alone: snapping to them would itself make short edges.
 constexpr double k_curved_fraction = 1.0 / 3.0;
+// Where refinement gives up on some triangles without reaching its vertex cap, it starts again from the G given with
+// every vertex of T that is curved by more than this fraction of the minimum angle counted as curved: nearly every
+// vertex that is not flat, as in intrinsic Delaunay refinement, where all vertices of T are vertices of the
+// triangulation and its triangles are flat inside. Near curved vertices, that is what reaches the angle where the
+// first attempt gives up (armadillo_cgal, brain_conte69 and triceratops at 25 degrees, horse at 30). As the only
+// strategy it reached 25 degrees on those but not on others, and 30 degrees on fewer meshes, with more faces.
+constexpr double k_second_curved_fraction = 1e-3;
 // A corner above this (radians) belongs to a patch that wraps around a bump of T (its corners sum to far more than
 // π): no use for an element. Once the minimum angle is reached, refinement cuts such corners in two.
 constexpr double k_max_corner = k_pi;
@@ -140,9 +147,18 @@ double planar_removal_estimate(const GeodesicTriangulation& g, VertexHandle v) {
         apex);
 }
 
+double smallest_corner_of(const GeodesicTriangulation& g) {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (FaceHandle f : g.coarse().faces())
+        for (HalfedgeHandle h : halfedges_of(g.coarse(), f)) smallest = std::min(smallest, corner_angle(g, h));
+    return smallest;
+}
+
 class Refiner {
 public:
-    Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result)
+    /// `curved_fraction`: a vertex of T whose cone angle differs from 2π by more than this fraction of the minimum
+    /// angle counts as curved.
+    Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result, double curved_fraction)
         : g_(g), options_(options), result_(result), propagation_(g.fine().mesh) {
         const geodesic::Mesh& mesh = g.fine().mesh;
         double sum = 0.0;
@@ -151,7 +167,7 @@ public:
         // Bisection stops by itself (every split halves an edge); only an explicit cap bounds it.
         budget_ = options.max_new_vertices > 0 ? options.max_new_vertices : std::numeric_limits<int>::max();
         min_angle_ = options.min_angle_deg * k_pi / 180.0;
-        curved_ = k_curved_fraction * min_angle_;
+        curved_ = curved_fraction * min_angle_;
         // The flips after a split evaluate a handful of edges: one thread does them faster than a team. Without the
         // region fallback: with it (cheap since the patches are cut out alone), triceratops reaches 25 degrees,
         // but lucy_100k, man and armadillo end lower (5.0 -> 0.3, 4.3 -> 0.9, 7.2 -> 5.5 degrees).
@@ -394,13 +410,6 @@ private:
         ++new_vertices_;
         result_.flips += flips.improve_flips;
         return Tried::kept;
-    }
-
-    static double smallest_corner_of(const GeodesicTriangulation& g) {
-        double smallest = std::numeric_limits<double>::infinity();
-        for (FaceHandle f : g.coarse().faces())
-            for (HalfedgeHandle h : halfedges_of(g.coarse(), f)) smallest = std::min(smallest, corner_angle(g, h));
-        return smallest;
     }
 
     /// The smallest corner of the faces of `trial` (a changed copy of G) that G does not have: those whose index
@@ -782,10 +791,32 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
                            " violations); make it valid first (geotri-flip)");
     result.angles_before = corner_angle_stats(g);
 
-    Refiner refiner(g, options, result);
-    refiner.bisect();
-    refiner.raise_min_angle();
-    refiner.count_corners_left();
+    const RefineResult given_result = result;
+    const GeodesicTriangulation given = g;  // shares the polylines: cheap
+    auto run = [&options](GeodesicTriangulation& target, RefineResult& counts, double curved_fraction) {
+        Refiner refiner(target, options, counts, curved_fraction);
+        refiner.bisect();
+        refiner.raise_min_angle();
+        refiner.count_corners_left();
+    };
+    run(g, result, k_curved_fraction);
+    // Given up on some triangles, not cascading into the cap: once more with nearly every vertex of T curved, and
+    // the better of the two kept (fewer corners left, then the larger smallest corner).
+    if (result.small_corners_left > 0 && !result.vertex_cap_reached) {
+        GeodesicTriangulation second = given;
+        RefineResult second_result = given_result;
+        run(second, second_result, k_second_curved_fraction);
+        second_result.second_attempt = true;
+        result.second_attempt = true;
+        const bool better = second_result.small_corners_left < result.small_corners_left ||
+                            (second_result.small_corners_left == result.small_corners_left &&
+                             smallest_corner_of(second) > smallest_corner_of(g));
+        if (better) {
+            g = std::move(second);
+            result = second_result;
+            result.second_attempt_kept = true;
+        }
+    }
 
     const ValidationReport after = validate(g);
     result.valid_after = after.valid;

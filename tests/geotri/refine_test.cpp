@@ -226,6 +226,21 @@ TEST(Refine, a_refinement_nearly_done_at_the_vertex_cap_goes_on) {
     expect_valid_with_area(g);
 }
 
+// Where refinement gives up on triangles without reaching its vertex cap, it starts again from the G given with nearly
+// every vertex of T that is not flat inserted before a circumcentre whose circle holds it: on triceratops at 25
+// degrees the first attempt gives up on a triangle next to curved vertices, the second reaches the angle.
+TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_vertex_of_t_as_a_feature) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    GeodesicTriangulation g = traced(test::shared_mesh("stress/triceratops.off").path, 320);
+    flip_to_delaunay(g);
+    RefineResult r;
+    check_min_angle(g, 25.0, "triceratops, 320 faces", &r);
+    EXPECT_TRUE(r.second_attempt);
+    EXPECT_TRUE(r.second_attempt_kept);
+}
+
 // At 30 degrees on boxpart, the last triangle below the angle can only be mended by taking out a vertex that
 // refinement itself inserted; before the vertices inserted became removable, it was given up at 29.3 degrees.
 TEST(Refine, a_vertex_that_refinement_inserted_is_taken_out_where_only_that_mends_a_face) {

@@ -20,6 +20,8 @@ struct RefineOptions {
     /// Corners at points of T whose cone angle is below three times this are exempt: a vertex of degree three or
     /// more there must have a smaller corner. Once every other corner is at least this, corners above 180 degrees
     /// (patches that wrap around a bump of T) are cut in two, where that leaves every new corner at least this.
+    /// Where refinement gives up on some triangles without reaching the vertex cap, it starts again from the G
+    /// given with nearly every vertex of T that is not flat treated as curved, and returns the better result.
     double min_angle_deg = 0.0;
     /// Do not refine a triangle whose shortest edge is shorter than this (0: a tenth of the mean edge length of T),
     /// nor make a new edge shorter than it, so that refinement does not chase a needle of T with ever smaller
@@ -32,8 +34,8 @@ struct RefineOptions {
     /// corner around there is then at least the minimum angle: vertices that decimation left close together make
     /// corners that circumcentres mend only with many small triangles. When only triangles that refinement gave up
     /// on are left below the angle, this is done once more with the vertices added so far removable too. Vertices
-    /// at curved points of T (whose cone angle differs from 2π by more than a third of the minimum angle) are
-    /// always kept.
+    /// at curved points of T (whose cone angle differs from 2π by more than a third of the minimum angle, or in a
+    /// second attempt (RefineResult::second_attempt) by more than a thousandth of it) are always kept.
     bool remove_vertices = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
@@ -56,6 +58,12 @@ struct RefineResult {
     int small_corners_left = 0;        ///< other corners below the minimum angle, where refinement gave up
     int wide_corners_left = 0;         ///< with a minimum angle: corners above 180 degrees left
     bool vertex_cap_reached = false;   ///< stopped at max_new_vertices
+    /// Refinement gave up on some triangles below the minimum angle without reaching the vertex cap, and started
+    /// again from the G given with nearly every vertex of T that is not flat treated as curved (a vertex of T
+    /// inside a circumcircle goes in before the circumcentre, and is never removed); `second_attempt_kept`: that
+    /// result had fewer corners left (or as many and a larger smallest corner), and it is the one returned, with
+    /// its counts.
+    bool second_attempt = false, second_attempt_kept = false;
     double longest_edge = 0.0;         ///< after
     CornerAngleStats angles_before, angles_after;
     double seconds = 0.0;
