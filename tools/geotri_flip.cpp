@@ -165,6 +165,9 @@ int run(tools::Tool& tool) {
             if (r.last_resorts_tried && thorough < 2)
                 std::fprintf(stderr, "%s: --thorough %d may mend it, at a cost of seconds to minutes\n", program,
                              thorough + 1);
+            std::fprintf(stderr, "%s: a coarse mesh with more faces (geotri-decimate --faces) has shorter geodesics, "
+                                 "which tangle less\n",
+                         program);
         }
     }
     return r.valid_after ? tools::k_exit_ok : k_exit_invalid;
