@@ -202,8 +202,22 @@ void locate_vertices(GeodesicTriangulation& g, TraceResult& result) {
     for (int v = 0; v < n; ++v) g.set_location(VertexHandle(v), location[static_cast<std::size_t>(v)]);
 }
 
+/// The genus of each component of T (FineMesh::component numbering): T is closed, so each component has 3F/2 edges
+/// and V - E + F = V - F/2 = 2 - 2 genus.
+std::vector<int> fine_genera(const FineMesh& fine) {
+    std::vector<int> vertices(static_cast<std::size_t>(fine.num_components), 0), faces(vertices.size(), 0);
+    const geodesic::Mesh& mesh = fine.mesh;
+    for (int v = 0; v < mesh.num_vertices(); ++v) ++vertices[static_cast<std::size_t>(fine.component[v])];
+    for (int f = 0; f < mesh.num_faces(); ++f)
+        ++faces[static_cast<std::size_t>(fine.component[static_cast<std::size_t>(mesh.triangle(f)[0])])];
+    std::vector<int> genus(vertices.size());
+    for (std::size_t c = 0; c < genus.size(); ++c) genus[c] = (2 - (vertices[c] - faces[c] / 2)) / 2;
+    return genus;
+}
+
 /// Each coarse component on one fine component, no two coarse components on the same one, no two coarse vertices
-/// at the same point: otherwise some edge could not be a geodesic between distinct points.
+/// at the same point: otherwise some edge could not be a geodesic between distinct points. And each coarse component
+/// of the fine component's genus: otherwise its patches could never be disks.
 void check_locations(const GeodesicTriangulation& g) {
     const CoarseMesh& coarse = g.coarse();
     const int n = static_cast<int>(coarse.n_vertices());
@@ -237,6 +251,29 @@ void check_locations(const GeodesicTriangulation& g) {
         if (!same.second)
             throw InvalidInput("coarse vertices " + std::to_string(same.first->second) + " and " + std::to_string(v) +
                                " lie on the same point of the fine mesh (" + same.first->first + ")");
+    }
+    // Flips, splits and collapses keep the coarse topology: with another genus, or a component of T left bare, G can
+    // never be valid.
+    const std::vector<int> fine_genus = fine_genera(g.fine());
+    const bool several = fine_genus.size() > 1;
+    for (std::size_t c = 0; c < fine_genus.size(); ++c)
+        if (!coarse_root_of_fine_component.count(static_cast<int>(c)))
+            throw InvalidInput("no coarse vertex lies on component " + std::to_string(c) + " of the fine mesh: the "
+                               "coarse mesh must cover each component");
+    std::map<int, int> euler;  // coarse component (root) -> V - E + F
+    for (int v = 0; v < n; ++v) ++euler[find_root(parent, v)];
+    for (auto e : coarse.edges())
+        --euler[find_root(parent, coarse.from_vertex_handle(coarse.halfedge_handle(e, 0)).idx())];
+    for (auto f : coarse.faces()) ++euler[find_root(parent, coarse.to_vertex_handle(coarse.halfedge_handle(f)).idx())];
+    for (const auto& [component, root] : coarse_root_of_fine_component) {
+        const int genus = (2 - euler[root]) / 2;
+        if (genus != fine_genus[static_cast<std::size_t>(component)])
+            throw InvalidInput("the coarse mesh" +
+                               (several ? " on component " + std::to_string(component) + " of the fine mesh" : "") +
+                               " has genus " + std::to_string(genus) + " but the fine mesh" +
+                               (several ? " there" : "") + " has genus " +
+                               std::to_string(fine_genus[static_cast<std::size_t>(component)]) +
+                               ": no geodesic triangulation with that connectivity can be valid");
     }
 }
 

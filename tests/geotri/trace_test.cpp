@@ -302,6 +302,31 @@ TEST_F(Trace, two_components_each_get_their_own) {
     }
 }
 
+// Flips, splits and collapses keep the coarse topology, so a coarse mesh of another genus than T, or one that leaves
+// a component of T bare, could never give a valid G: trace refuses it and says why.
+TEST_F(Trace, a_coarse_mesh_of_another_genus_or_leaving_a_component_bare_is_refused) {
+    const auto torus = fine_of(geotri::test::torus(3.0, 1.0, 24, 12), "torus");
+    GeodesicTriangulation sphere_on_torus(torus, geotri::make_coarse_mesh(tetrahedron_on(torus->mesh), "tetrahedron"));
+    try {
+        geotri::trace(sphere_on_torus);
+        ADD_FAILURE() << "no error";
+    } catch (const geotri::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("genus 0 but the fine mesh has genus 1"), std::string::npos) << e.what();
+    }
+
+    const auto a = geotri::test::icosphere(2);
+    const auto two_spheres = fine_of(geotri::test::disjoint_union(a, a, {5, 0, 0}), "two spheres");
+    const int n = static_cast<int>(a.positions.size());
+    GeodesicTriangulation one_bare(two_spheres,
+                                   geotri::make_coarse_mesh(tetrahedron_on(two_spheres->mesh, {0, 0, 0}, 0, n), "one"));
+    try {
+        geotri::trace(one_bare);
+        ADD_FAILURE() << "no error";
+    } catch (const geotri::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("no coarse vertex lies on component 1"), std::string::npos) << e.what();
+    }
+}
+
 TEST_F(Trace, two_vertices_on_one_point_are_refused) {
     const auto fine = fine_of(geotri::test::icosphere(2), "icosphere");
     geotri::MeshData coarse = tetrahedron_on(fine->mesh);

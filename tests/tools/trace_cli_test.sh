@@ -241,6 +241,19 @@ error_coarse_on_another_mesh)
     fi
     ;;
 
+error_coarse_of_another_genus)
+    # A tetrahedron on Bob, who has a handle: no G with that connectivity can ever be valid, so trace refuses it.
+    cp "$data/classic/bob_small.ply" in_bob.ply
+    "$(dirname "$bin")/geotri-decimate" in_bob.ply -o in_coarsest.off --coarsest --quiet ||
+        fail "geotri-decimate failed"
+    awk 'NR == 1 { print; print "4 4 0" } NR == 3 || NR == 6 || NR == 9 || NR == 11 { print }
+         END { print "3 0 1 2"; print "3 0 2 3"; print "3 0 3 1"; print "3 1 3 2" }' in_coarsest.off >in_tetrahedron.off
+    run in_bob.ply in_tetrahedron.off -o out.gtri
+    expect_error_about in_tetrahedron.off
+    grep -q "genus 0 but the fine mesh has genus 1" stderr || fail "stderr does not name the two genera"
+    expect_no_output
+    ;;
+
 edge_paths_are_used)
     trace_tripod
     write_trivial_paths "$(sed -n 's/^fine_checksum //p' out/g.gtri)" in_tripod.paths

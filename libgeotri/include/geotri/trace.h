@@ -50,7 +50,9 @@ struct TraceResult {
 /// traces every edge: each edge's polyline becomes the exact shortest geodesic between the locations of its ends.
 /// Each edge is traced from one of its ends, goal-directed; the result is bit-identical for any thread count.
 /// Throws InvalidInput when a coarse component does not lie on one fine component, when two coarse components lie
-/// on the same fine component, or when two coarse vertices land on the same point of T; NumericalError if
+/// on the same fine component, when a fine component holds no coarse vertex, when a coarse component's genus is not
+/// that of its fine component (no G with that connectivity can be valid: the local operations keep it), or when
+/// two coarse vertices land on the same point of T; NumericalError if
 /// libgeodesic finds no path between two ends on the same component; IOError("NAME: problem") when the edge paths
 /// do not fit T or the coarse mesh. Progress goes through options.progress only.
 TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options = {});
