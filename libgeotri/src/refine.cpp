@@ -808,6 +808,10 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     // Given up on some triangles, not cascading into the cap: once more with nearly every vertex of T curved, and
     // the better of the two kept (fewer corners left, then the larger smallest corner).
     if (result.small_corners_left > 0 && !result.vertex_cap_reached) {
+        if (options.progress)
+            options.progress("gave up on " + std::to_string(result.small_corners_left) +
+                             (result.small_corners_left == 1 ? " corner" : " corners") +
+                             ": starting again with nearly every vertex of T counted as curved");
         GeodesicTriangulation second = given;
         RefineResult second_result = given_result;
         run(second, second_result, k_second_curved_fraction);
