@@ -68,7 +68,7 @@ FineMesh make_fine_mesh(MeshData data, const std::string& name) {
             throw InvalidInput(prefix + error.what());
         }
     };
-    FineMesh fine{name, checked_mesh(), checksum, {}, 0, 0};
+    FineMesh fine{name, checked_mesh(), checksum, {}, 0, 0, {}};
     const geodesic::Mesh& mesh = fine.mesh;
 
     if (mesh.num_boundary_halfedges() > 0)
@@ -103,8 +103,14 @@ FineMesh make_fine_mesh(MeshData data, const std::string& name) {
         if (number < 0) number = fine.num_components++;
         fine.component[v] = number;
     }
-    for (int f = 0; f < mesh.num_faces(); ++f)
+    std::vector<int> vertices(static_cast<std::size_t>(fine.num_components), 0), faces(vertices.size(), 0);
+    for (int v = 0; v < mesh.num_vertices(); ++v) ++vertices[static_cast<std::size_t>(fine.component[v])];
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+        ++faces[static_cast<std::size_t>(fine.component[static_cast<std::size_t>(mesh.triangle(f)[0])])];
         if (mesh.face_area(f) == 0.0) ++fine.num_zero_area_faces;
+    }
+    fine.genus.resize(vertices.size());
+    for (std::size_t c = 0; c < vertices.size(); ++c) fine.genus[c] = (2 - (vertices[c] - faces[c] / 2)) / 2;
     return fine;
 }
 

@@ -5,6 +5,7 @@
 #endif
 
 #include "class_geodesics.h"
+#include "coarse_components.h"
 
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
@@ -20,7 +21,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <numeric>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -147,11 +147,6 @@ int fine_component_of(const FineMesh& fine, const geodesic::SurfacePoint& p) {
     return -1;
 }
 
-int find_root(std::vector<int>& parent, int v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-}
-
 /// Sets every coarse vertex's location; returns the move figures in `result`.
 void locate_vertices(GeodesicTriangulation& g, TraceResult& result) {
     const FineMesh& fine = g.fine();
@@ -202,77 +197,51 @@ void locate_vertices(GeodesicTriangulation& g, TraceResult& result) {
     for (int v = 0; v < n; ++v) g.set_location(VertexHandle(v), location[static_cast<std::size_t>(v)]);
 }
 
-/// The genus of each component of T (FineMesh::component numbering): T is closed, so each component has 3F/2 edges
-/// and V - E + F = V - F/2 = 2 - 2 genus.
-std::vector<int> fine_genera(const FineMesh& fine) {
-    std::vector<int> vertices(static_cast<std::size_t>(fine.num_components), 0), faces(vertices.size(), 0);
-    const geodesic::Mesh& mesh = fine.mesh;
-    for (int v = 0; v < mesh.num_vertices(); ++v) ++vertices[static_cast<std::size_t>(fine.component[v])];
-    for (int f = 0; f < mesh.num_faces(); ++f)
-        ++faces[static_cast<std::size_t>(fine.component[static_cast<std::size_t>(mesh.triangle(f)[0])])];
-    std::vector<int> genus(vertices.size());
-    for (std::size_t c = 0; c < genus.size(); ++c) genus[c] = (2 - (vertices[c] - faces[c] / 2)) / 2;
-    return genus;
-}
-
 /// Each coarse component on one fine component, no two coarse components on the same one, no two coarse vertices
-/// at the same point: otherwise some edge could not be a geodesic between distinct points. And each coarse component
-/// of the fine component's genus: otherwise its patches could never be disks.
+/// at the same point: otherwise some edge could not be a geodesic between distinct points. Every fine component
+/// covered, each by a coarse component of its genus: flips, splits and collapses keep the coarse topology, so
+/// otherwise G could never be valid.
 void check_locations(const GeodesicTriangulation& g) {
     const CoarseMesh& coarse = g.coarse();
     const int n = static_cast<int>(coarse.n_vertices());
-    std::vector<int> parent(static_cast<std::size_t>(n));
-    std::iota(parent.begin(), parent.end(), 0);
-    for (auto e : coarse.edges()) {
-        const int a = find_root(parent, coarse.from_vertex_handle(coarse.halfedge_handle(e, 0)).idx());
-        const int b = find_root(parent, coarse.to_vertex_handle(coarse.halfedge_handle(e, 0)).idx());
-        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    }
-    std::map<int, int> first_vertex_of_root;          // coarse component (root) -> its first vertex
-    std::map<int, int> coarse_root_of_fine_component;  // fine component -> coarse component (root)
+    const detail::CoarseComponents components = detail::coarse_components(coarse);
+    std::map<int, int> first_vertex_of;           // coarse component -> its first vertex
+    std::map<int, int> coarse_component_of_fine;  // fine component -> coarse component
     std::map<std::string, int> vertex_at;
     for (int v = 0; v < n; ++v) {
         const geodesic::SurfacePoint& p = g.location(VertexHandle(v));
-        const int root = find_root(parent, v);
+        const int mine = components.of_vertex[static_cast<std::size_t>(v)];
         const int component = fine_component_of(g.fine(), p);
-        const auto first = first_vertex_of_root.emplace(root, v);
+        const auto first = first_vertex_of.emplace(mine, v);
         const int first_component = fine_component_of(g.fine(), g.location(VertexHandle(first.first->second)));
         if (component != first_component)
             throw InvalidInput("coarse vertices " + std::to_string(first.first->second) + " and " +
                                std::to_string(v) + " belong to one coarse component but lie on different components "
                                "of the fine mesh (" + std::to_string(first_component) + " and " +
                                std::to_string(component) + ")");
-        const auto owner = coarse_root_of_fine_component.emplace(component, root);
-        if (owner.first->second != root)
-            throw InvalidInput("coarse vertices " + std::to_string(first_vertex_of_root[owner.first->second]) +
-                               " and " + std::to_string(v) + " belong to different coarse components but lie on "
-                               "the same component of the fine mesh (" + std::to_string(component) + ")");
+        const auto owner = coarse_component_of_fine.emplace(component, mine);
+        if (owner.first->second != mine)
+            throw InvalidInput("coarse vertices " + std::to_string(first_vertex_of[owner.first->second]) + " and " +
+                               std::to_string(v) + " belong to different coarse components but lie on the same "
+                               "component of the fine mesh (" + std::to_string(component) + ")");
         const auto same = vertex_at.emplace(geodesic::to_spec(p), v);
         if (!same.second)
             throw InvalidInput("coarse vertices " + std::to_string(same.first->second) + " and " + std::to_string(v) +
                                " lie on the same point of the fine mesh (" + same.first->first + ")");
     }
-    // Flips, splits and collapses keep the coarse topology: with another genus, or a component of T left bare, G can
-    // never be valid.
-    const std::vector<int> fine_genus = fine_genera(g.fine());
+    const std::vector<int>& fine_genus = g.fine().genus;
     const bool several = fine_genus.size() > 1;
-    for (std::size_t c = 0; c < fine_genus.size(); ++c)
-        if (!coarse_root_of_fine_component.count(static_cast<int>(c)))
+    for (std::size_t c = 0; c < fine_genus.size(); ++c) {
+        const auto covering = coarse_component_of_fine.find(static_cast<int>(c));
+        if (covering == coarse_component_of_fine.end())
             throw InvalidInput("no coarse vertex lies on component " + std::to_string(c) + " of the fine mesh: the "
                                "coarse mesh must cover each component");
-    std::map<int, int> euler;  // coarse component (root) -> V - E + F
-    for (int v = 0; v < n; ++v) ++euler[find_root(parent, v)];
-    for (auto e : coarse.edges())
-        --euler[find_root(parent, coarse.from_vertex_handle(coarse.halfedge_handle(e, 0)).idx())];
-    for (auto f : coarse.faces()) ++euler[find_root(parent, coarse.to_vertex_handle(coarse.halfedge_handle(f)).idx())];
-    for (const auto& [component, root] : coarse_root_of_fine_component) {
-        const int genus = (2 - euler[root]) / 2;
-        if (genus != fine_genus[static_cast<std::size_t>(component)])
+        const int genus = components.genus[static_cast<std::size_t>(covering->second)];
+        if (genus != fine_genus[c])
             throw InvalidInput("the coarse mesh" +
-                               (several ? " on component " + std::to_string(component) + " of the fine mesh" : "") +
+                               (several ? " on component " + std::to_string(c) + " of the fine mesh" : "") +
                                " has genus " + std::to_string(genus) + " but the fine mesh" +
-                               (several ? " there" : "") + " has genus " +
-                               std::to_string(fine_genus[static_cast<std::size_t>(component)]) +
+                               (several ? " there" : "") + " has genus " + std::to_string(fine_genus[c]) +
                                ": no geodesic triangulation with that connectivity can be valid");
     }
 }

@@ -4,6 +4,7 @@
 #include <geotri/tangent_angles.h>
 #include <geotri/validate.h>
 
+#include "coarse_components.h"
 #include "crossing_items.h"
 #include "local_checks.h"
 #include "plane_segments.h"
@@ -596,29 +597,9 @@ void Validator::summarise() {
     report_.faces = static_cast<int>(coarse_.n_faces());
     report_.fine_area = mesh_.total_area();
 
-    // Components and genus from the Euler characteristic of each coarse component.
-    std::vector<int> parent(coarse_.n_vertices());
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&](int x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
-    for (auto e : coarse_.edges()) parent[find(ends_[e.idx()][0])] = find(ends_[e.idx()][1]);
-    std::vector<long> chi(coarse_.n_vertices(), 0);
-    std::vector<unsigned char> used(coarse_.n_vertices(), 0);
-    for (auto v : coarse_.vertices()) {
-        ++chi[find(v.idx())];
-        used[find(v.idx())] = 1;
-    }
-    for (auto e : coarse_.edges()) --chi[find(ends_[e.idx()][0])];
-    for (auto f : coarse_.faces()) ++chi[find(coarse_.to_vertex_handle(coarse_.halfedge_handle(f)).idx())];
-    report_.components = 0;
-    report_.genus = 0;
-    for (std::size_t r = 0; r < used.size(); ++r) {
-        if (!used[r]) continue;
-        ++report_.components;
-        report_.genus += static_cast<int>((2 - chi[r]) / 2);
-    }
+    const detail::CoarseComponents components = detail::coarse_components(coarse_);
+    report_.components = static_cast<int>(components.genus.size());
+    report_.genus = std::accumulate(components.genus.begin(), components.genus.end(), 0);
 
     if (!corner_angles_.empty()) {
         const auto [lo, hi] = std::minmax_element(corner_angles_.begin(), corner_angles_.end());

@@ -19,6 +19,7 @@ struct FineMesh {
     std::vector<int> component;      ///< per vertex: its connected component, numbered in order of first vertex
     int num_components = 0;
     int num_zero_area_faces = 0;
+    std::vector<int> genus;          ///< per component: V - F/2 = 2 - 2 genus, since T is closed (E = 3F/2)
 };
 
 /// Reads `path` exactly (read_mesh) and checks it (make_fine_mesh). Throws IOError for a file problem and
