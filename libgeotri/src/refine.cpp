@@ -44,7 +44,7 @@ constexpr double k_curved_fraction = 1.0 / 3.0;
 // vertex that is not flat, as in intrinsic Delaunay refinement, where all vertices of T are vertices of the
 // triangulation and its triangles are flat inside. Near curved vertices, that is what reaches the angle where the
 // first attempt gives up (armadillo_cgal, brain_conte69 and triceratops at 25 degrees, horse at 30). As the only
-// strategy it reached 25 degrees on those but not on others, and 30 degrees on fewer meshes, with more faces.
+// strategy (with a ten-thousandth or a tenth of the angle) it reached 30 degrees on fewer meshes, with more faces.
 constexpr double k_second_curved_fraction = 1e-3;
 // A corner above this (radians) belongs to a patch that wraps around a bump of T (its corners sum to far more than
 // π): no use for an element. Once the minimum angle is reached, refinement cuts such corners in two.
@@ -151,6 +151,18 @@ double smallest_corner_of(const GeodesicTriangulation& g) {
     double smallest = std::numeric_limits<double>::infinity();
     for (FaceHandle f : g.coarse().faces())
         for (HalfedgeHandle h : halfedges_of(g.coarse(), f)) smallest = std::min(smallest, corner_angle(g, h));
+    return smallest;
+}
+
+/// G's smallest corner at a point of T whose cone angle is at least three times `min_angle_deg` (the corners that
+/// refinement does not exempt), or infinity.
+double smallest_corner_not_exempt(const GeodesicTriangulation& g, double min_angle_deg) {
+    const double bar = 3.0 * min_angle_deg * k_pi / 180.0;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (FaceHandle f : g.coarse().faces())
+        for (HalfedgeHandle h : halfedges_of(g.coarse(), f))
+            if (cone_angle(g.fine().mesh, g.location(g.coarse().from_vertex_handle(h))) >= bar)
+                smallest = std::min(smallest, corner_angle(g, h));
     return smallest;
 }
 
@@ -796,8 +808,10 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
                            " violations); make it valid first (geotri-flip)");
     result.angles_before = corner_angle_stats(g);
 
+    // For a second attempt at the minimum angle (a copy shares the polylines: cheap).
     const RefineResult given_result = result;
-    const GeodesicTriangulation given = g;  // shares the polylines: cheap
+    std::optional<GeodesicTriangulation> given;
+    if (options.min_angle_deg > 0.0) given.emplace(g);
     auto run = [&options](GeodesicTriangulation& target, RefineResult& counts, double curved_fraction) {
         Refiner refiner(target, options, counts, curved_fraction);
         refiner.bisect();
@@ -806,20 +820,21 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     };
     run(g, result, k_curved_fraction);
     // Given up on some triangles, not cascading into the cap: once more with nearly every vertex of T curved, and
-    // the better of the two kept (fewer corners left, then the larger smallest corner).
-    if (result.small_corners_left > 0 && !result.vertex_cap_reached) {
+    // the better of the two kept (fewer corners left, then the larger smallest corner that is not exempt).
+    if (given && result.small_corners_left > 0 && !result.vertex_cap_reached) {
         if (options.progress)
             options.progress("gave up on " + std::to_string(result.small_corners_left) +
                              (result.small_corners_left == 1 ? " corner" : " corners") +
                              ": starting again with nearly every vertex of T counted as curved");
-        GeodesicTriangulation second = given;
+        GeodesicTriangulation second = *given;
         RefineResult second_result = given_result;
         run(second, second_result, k_second_curved_fraction);
         second_result.second_attempt = true;
         result.second_attempt = true;
         const bool better = second_result.small_corners_left < result.small_corners_left ||
                             (second_result.small_corners_left == result.small_corners_left &&
-                             smallest_corner_of(second) > smallest_corner_of(g));
+                             smallest_corner_not_exempt(second, options.min_angle_deg) >
+                                 smallest_corner_not_exempt(g, options.min_angle_deg));
         if (better) {
             g = std::move(second);
             result = second_result;

@@ -235,10 +235,27 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation g = traced(test::shared_mesh("stress/triceratops.off").path, 320);
     flip_to_delaunay(g);
+    const GeodesicTriangulation flipped = g;
     RefineResult r;
     check_min_angle(g, 25.0, "triceratops, 320 faces", &r);
     EXPECT_TRUE(r.second_attempt);
     EXPECT_TRUE(r.second_attempt_kept);
+
+    // At 30 degrees both attempts give up next to saddles of T: the first result, which leaves fewer corners, is
+    // kept, and refining again gives the same G.
+    RefineOptions options;
+    options.min_angle_deg = 30.0;
+    GeodesicTriangulation at_30 = flipped, again = flipped;
+    const RefineResult first_kept = refine(at_30, options);
+    std::cout << "[ refine   ] triceratops at 30 degrees: " << first_kept.angles_after.min_deg << "°, "
+              << first_kept.small_corners_left << " corners left, " << at_30.coarse().n_faces() << " faces\n";
+    EXPECT_TRUE(first_kept.second_attempt);
+    EXPECT_FALSE(first_kept.second_attempt_kept);
+    EXPECT_GT(first_kept.small_corners_left, 0);
+    EXPECT_TRUE(first_kept.valid_after);
+    expect_valid_with_area(at_30);
+    refine(again, options);
+    EXPECT_EQ(polylines_of(again), polylines_of(at_30));
 }
 
 // At 30 degrees on boxpart, the last triangle below the angle can only be mended by taking out a vertex that

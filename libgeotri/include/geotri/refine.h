@@ -60,13 +60,14 @@ struct RefineResult {
     bool vertex_cap_reached = false;   ///< stopped at max_new_vertices
     /// Refinement gave up on some triangles below the minimum angle without reaching the vertex cap, and started
     /// again from the G given with nearly every vertex of T that is not flat treated as curved (a vertex of T
-    /// inside a circumcircle goes in before the circumcentre, and is never removed); `second_attempt_kept`: that
-    /// result had fewer corners left (or as many and a larger smallest corner), and it is the one returned, with
-    /// its counts.
-    bool second_attempt = false, second_attempt_kept = false;
+    /// inside a circumcircle goes in before the circumcentre, and is never removed).
+    bool second_attempt = false;
+    /// The second attempt had fewer corners left (or as many and a larger smallest corner that is not exempt): its
+    /// result is the one returned, with its counts.
+    bool second_attempt_kept = false;
     double longest_edge = 0.0;         ///< after
     CornerAngleStats angles_before, angles_after;
-    double seconds = 0.0;
+    double seconds = 0.0;              ///< both attempts, where there were two
 };
 
 /// Refines G as `options` say. Throws InvalidInput when G is not valid (refinement keeps a valid G valid; make it
