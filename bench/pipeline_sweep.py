@@ -54,6 +54,8 @@ def sweep_one(mesh, options, work):
     """One table row: decimate -> trace -> flip -> refine -> check -> overlay on `mesh`."""
     name = str(mesh.relative_to(options.data)) if mesh.is_relative_to(options.data) else mesh.name
     stem = work / mesh.stem
+    for old in work.glob(f"{mesh.stem}.*"):  # with --keep, what an earlier run left must not pass for this run's
+        old.unlink()
     threads = ["--threads", str(options.threads)] if options.threads else []
     times = {}
     row = [name]
