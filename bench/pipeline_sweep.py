@@ -141,11 +141,14 @@ def main():
                                       if p.suffix in (".off", ".obj", ".ply", ".stl") and p.is_file())
     if not meshes:
         sys.exit(f"pipeline_sweep.py: no meshes under {options.data}")
+    if options.keep:
+        # The outputs are named after the meshes (MESH.off among them): never in a folder that holds one.
+        if any(mesh.resolve().parent == options.keep.resolve() for mesh in meshes):
+            sys.exit(f"pipeline_sweep.py: --keep {options.keep} holds a mesh of the sweep; give another folder")
+        options.keep.mkdir(parents=True, exist_ok=True)
     print("| mesh | faces | coarse faces | traced | flipped, min angle | refined | final | " +
           " | ".join(f"{stage} (s)" for stage in STAGES) + " | total (s) |")
     print("|---|---:|---:|---|---|---|---|" + "---:|" * (len(STAGES) + 1))
-    if options.keep:
-        options.keep.mkdir(parents=True, exist_ok=True)
     folder = (contextlib.nullcontext(options.keep) if options.keep
               else tempfile.TemporaryDirectory(prefix="geotri-sweep-"))
     with folder as work:
