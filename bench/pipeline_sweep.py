@@ -54,8 +54,8 @@ def sweep_one(mesh, options, work):
     """One table row: decimate -> trace -> flip -> refine -> check -> overlay on `mesh`."""
     name = str(mesh.relative_to(options.data)) if mesh.is_relative_to(options.data) else mesh.name
     stem = work / mesh.stem
-    for old in work.glob(f"{mesh.stem}.*"):  # with --keep, what an earlier run left must not pass for this run's
-        old.unlink()
+    for suffix in OUTPUTS:  # with --keep, what an earlier run left must not pass for this run's
+        pathlib.Path(f"{stem}{suffix}").unlink(missing_ok=True)
     threads = ["--threads", str(options.threads)] if options.threads else []
     times = {}
     row = [name]
@@ -120,6 +120,7 @@ def sweep_one(mesh, options, work):
 
 
 STAGES = ["decimate", "trace", "flip", "refine", "check", "overlay"]
+OUTPUTS = [".off", ".paths", ".gtri", ".flip.gtri", ".refine.gtri", ".vtu"]  # after the mesh's name
 
 
 def main():
