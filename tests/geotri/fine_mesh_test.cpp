@@ -72,6 +72,7 @@ TEST(FineMesh, tetrahedron_is_accepted_with_one_component) {
     EXPECT_EQ(fine.num_zero_area_faces, 0);
     EXPECT_EQ(fine.path, "tet");
     for (const int c : fine.component) EXPECT_EQ(c, 0);
+    EXPECT_EQ(fine.genus, std::vector<int>{0});
 }
 
 TEST(FineMesh, torus_and_sphere_are_two_components_numbered_by_first_vertex) {
@@ -81,6 +82,16 @@ TEST(FineMesh, torus_and_sphere_are_two_components_numbered_by_first_vertex) {
     ASSERT_EQ(fine.num_components, 2);
     for (int v = 0; v < fine.mesh.num_vertices(); ++v)
         EXPECT_EQ(fine.component[std::size_t(v)], v < int(a.positions.size()) ? 0 : 1) << "vertex " << v;
+    EXPECT_EQ(fine.genus, (std::vector<int>{1, 0}));  // the torus's handle, the sphere's none
+}
+
+// The genus of each component, of the bundled real meshes whose genus their README gives.
+TEST(FineMesh, genus_of_the_bundled_meshes) {
+    const std::string data = GEOTRI_TEST_DATA;
+    EXPECT_EQ(load_fine_mesh(data + "/classic/bob_small.ply").genus, std::vector<int>{1});
+    EXPECT_EQ(load_fine_mesh(data + "/cad/tripod.off").genus, std::vector<int>{0});
+    EXPECT_EQ(load_fine_mesh(data + "/cad/joint.off").genus, std::vector<int>{2});
+    EXPECT_EQ(load_fine_mesh(data + "/cad/anchor.off").genus, std::vector<int>{4});
 }
 
 TEST(FineMesh, three_components_counted) {
