@@ -13,6 +13,7 @@
 #include <geotri/validate.h>
 
 #include <cstdio>
+#include <numeric>
 #include <string>
 
 namespace {
@@ -34,10 +35,15 @@ std::string join(const std::vector<int>& ids) {
     return s;
 }
 
-void print_report(const std::string& path, const geotri::ValidationReport& r) {
+/// The genus of T, all components together: what the coarse mesh's must be.
+int fine_genus(const geotri::FineMesh& fine) { return std::accumulate(fine.genus.begin(), fine.genus.end(), 0); }
+
+void print_report(const std::string& path, const geotri::ValidationReport& r, const geotri::FineMesh& fine) {
     std::printf("%s: %s\n", path.c_str(), r.valid ? "valid" : "INVALID");
     std::printf("  coarse mesh: %d vertices, %d edges, %d faces, %d component%s, genus %d\n", r.vertices, r.edges,
                 r.faces, r.components, r.components == 1 ? "" : "s", r.genus);
+    std::printf("  fine mesh: %d vertices, %d faces, %d component%s, genus %d\n", fine.mesh.num_vertices(),
+                fine.mesh.num_faces(), fine.num_components, fine.num_components == 1 ? "" : "s", fine_genus(fine));
     std::printf("  corner angles: %.6g to %.6g degrees\n", r.min_corner_angle_deg, r.max_corner_angle_deg);
     std::printf("  edge lengths: min %.9g, mean %.9g, max %.9g\n", r.min_edge_length, r.mean_edge_length,
                 r.max_edge_length);
@@ -107,6 +113,7 @@ int run(tools::Tool& tool) {
         summary.add("faces", r.faces);
         summary.add("components", r.components);
         summary.add("genus", r.genus);
+        summary.add("fine_genus", fine_genus(g.fine()));
         summary.add("min_corner_angle_deg", r.min_corner_angle_deg);
         summary.add("max_corner_angle_deg", r.max_corner_angle_deg);
         summary.add("min_edge_length", r.min_edge_length);
@@ -120,7 +127,7 @@ int run(tools::Tool& tool) {
         summary.add("validate_seconds", validate_seconds);
         std::printf("%s\n", summary.str().c_str());
     } else if (tool.verbose()) {
-        print_report(input, r);
+        print_report(input, r, g.fine());
     }
     if (tool.verbose())
         std::fprintf(stderr, "%s: %s is %s (load %.3f s, check %.3f s)\n", tool.program().c_str(), input.c_str(),

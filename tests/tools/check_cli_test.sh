@@ -84,6 +84,7 @@ valid_exits_zero)
         grep -q "condition $c (.*): ok" stdout || fail "condition $c not reported ok"
     done
     grep -q "4 vertices, 6 edges, 4 faces, 1 component, genus 0" stdout || fail "wrong counts"
+    grep -q "fine mesh: 24 vertices, 44 faces, 1 component, genus 0" stdout || fail "wrong counts of T"
     grep -q "violations:" stdout && fail "a valid G lists violations"
     ;;
 
@@ -99,6 +100,7 @@ valid_json_parses)
     [ "$(json_field stdout vertices)" = "4" ] || fail "vertices is not 4"
     [ "$(json_field stdout faces)" = "4" ] || fail "faces is not 4"
     [ "$(json_field stdout genus)" = "0" ] || fail "genus is not 0"
+    [ "$(json_field stdout fine_genus)" = "0" ] || fail "fine_genus is not 0"
     for key in min_corner_angle_deg max_corner_angle_deg min_edge_length mean_edge_length max_edge_length \
                patch_area fine_area; do
         json_field stdout $key >/dev/null || fail "no $key"
