@@ -445,11 +445,6 @@ struct ComponentInput {
     double area = 0.0;
 };
 
-int euler_characteristic(const ComponentInput& c) {
-    // Closed: every edge has two faces, so E = 3F/2.
-    return int(c.vertices.size()) - 3 * int(c.faces.size()) / 2 + int(c.faces.size());
-}
-
 // Splits `target` faces between components: at least min_faces each, at most what each has, the rest in proportion
 // to area, always an even count (a closed triangle mesh has an even number of faces).
 std::vector<int> split_target(std::size_t target, const std::vector<DecimateComponent>& components,
@@ -657,8 +652,8 @@ DecimateResult decimate(const FineMesh& fine, const DecimateOptions& options) {
         DecimateComponent& info = result.components[c];
         info.fine_vertices = int(inputs[c].vertices.size());
         info.fine_faces = int(inputs[c].faces.size());
-        info.euler_characteristic = euler_characteristic(inputs[c]);
-        info.genus = (2 - info.euler_characteristic) / 2;
+        info.genus = fine.genus[c];
+        info.euler_characteristic = 2 - 2 * info.genus;
         info.min_faces = std::min(info.fine_faces, min_faces_of_genus(std::max(0, info.genus)));
         areas[c] = inputs[c].area;
         euler_sum += info.euler_characteristic;
