@@ -114,6 +114,7 @@ int run(tools::Tool& tool) {
         summary.add("vertex_cap_reached", r.vertex_cap_reached);
         summary.add("second_attempt", r.second_attempt);
         summary.add("second_attempt_kept", r.second_attempt_kept);
+        summary.add("second_attempt_error", r.second_attempt_error);
         summary.add("longest_edge", r.longest_edge);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);
         summary.add("load_seconds", load_seconds);
@@ -139,8 +140,10 @@ int run(tools::Tool& tool) {
                          program, r.exempt_corners, options.min_angle_deg, r.small_corners_left);
         if (r.second_attempt)
             std::fprintf(stderr, "%s: refinement gave up on some triangles and started again with nearly every vertex "
-                                 "of T that is not flat treated as curved; %s result kept\n",
-                         program, r.second_attempt_kept ? "the second" : "the first");
+                                 "of T that is not flat treated as curved; %s result kept%s%s\n",
+                         program, r.second_attempt_kept ? "the second" : "the first",
+                         r.second_attempt_error.empty() ? "" : " (the second attempt stopped: ",
+                         r.second_attempt_error.empty() ? "" : (r.second_attempt_error + ")").c_str());
         if (r.wide_corners_left > 0)
             std::fprintf(stderr, "%s: %d corners above 180 degrees left\n", program, r.wide_corners_left);
         std::fprintf(stderr, "%s: %s; refined in %.3f s\n", program, r.valid_after ? "valid" : "INVALID", r.seconds);

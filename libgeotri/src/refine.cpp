@@ -828,13 +828,20 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
                              ": starting again with nearly every vertex of T counted as curved");
         GeodesicTriangulation second = *given;
         RefineResult second_result = given_result;
-        run(second, second_result, k_second_curved_fraction);
-        second_result.second_attempt = true;
         result.second_attempt = true;
-        const bool better = second_result.small_corners_left < result.small_corners_left ||
-                            (second_result.small_corners_left == result.small_corners_left &&
-                             smallest_corner_not_exempt(second, options.min_angle_deg) >
-                                 smallest_corner_not_exempt(g, options.min_angle_deg));
+        bool finished = true;
+        try {
+            run(second, second_result, k_second_curved_fraction);
+        } catch (const NumericalError& error) {
+            // The second attempt only tries to do better: where it meets numerical trouble, the first result stands.
+            result.second_attempt_error = error.what();
+            finished = false;
+        }
+        second_result.second_attempt = true;
+        const bool better = finished && (second_result.small_corners_left < result.small_corners_left ||
+                                         (second_result.small_corners_left == result.small_corners_left &&
+                                          smallest_corner_not_exempt(second, options.min_angle_deg) >
+                                              smallest_corner_not_exempt(g, options.min_angle_deg)));
         if (better) {
             g = std::move(second);
             result = second_result;

@@ -256,6 +256,20 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     expect_valid_with_area(at_30);
     refine(again, options);
     EXPECT_EQ(polylines_of(again), polylines_of(at_30));
+
+    // A second attempt that meets numerical trouble (here thrown from the progress callback once it has begun)
+    // leaves the first result, as refining without it gives, and says why.
+    GeodesicTriangulation troubled = flipped;
+    options.progress = [started = false](const std::string& where) mutable {
+        if (started) throw NumericalError("trouble in the second attempt");
+        started = where.find("starting again") != std::string::npos;
+    };
+    const RefineResult stopped = refine(troubled, options);
+    EXPECT_TRUE(stopped.second_attempt);
+    EXPECT_FALSE(stopped.second_attempt_kept);
+    EXPECT_EQ(stopped.second_attempt_error, "trouble in the second attempt");
+    EXPECT_EQ(stopped.small_corners_left, first_kept.small_corners_left);
+    EXPECT_EQ(polylines_of(troubled), polylines_of(at_30));
 }
 
 // At 30 degrees on boxpart, the last triangle below the angle can only be mended by taking out a vertex that

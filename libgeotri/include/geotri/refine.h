@@ -65,6 +65,8 @@ struct RefineResult {
     /// The second attempt had fewer corners left (or as many and a larger smallest corner that is not exempt): its
     /// result is the one returned, with its counts.
     bool second_attempt_kept = false;
+    /// Why the second attempt stopped, where it threw NumericalError: the first result is returned then.
+    std::string second_attempt_error;
     double longest_edge = 0.0;         ///< after
     CornerAngleStats angles_before, angles_after;
     double seconds = 0.0;              ///< both attempts, where there were two
