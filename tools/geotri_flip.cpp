@@ -1,7 +1,8 @@
 // geotri-flip: makes a geodesic triangulation valid by flips (untangle), then flips it towards geodesic Delaunay
 // (improve), and writes the result (issue 4).
 //
-//   geotri-flip IN.gtri -o OUT.gtri [--criterion angle|length] [--thorough LEVEL] [--fine PATH] [--threads N] [--quiet] [--json]
+//   geotri-flip IN.gtri -o OUT.gtri [--criterion angle|length] [--thorough LEVEL] [--fine PATH] [--threads N]
+//               [--quiet] [--json]
 //
 // Exit codes: 0 when OUT is valid, 3 when OUT is written but still invalid, 1 bad input, 2 usage error.
 

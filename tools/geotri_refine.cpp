@@ -138,12 +138,13 @@ int run(tools::Tool& tool) {
             std::fprintf(stderr, "%s: %d corners below %g degrees at cone points that force them, %d where refinement "
                                  "gave up\n",
                          program, r.exempt_corners, options.min_angle_deg, r.small_corners_left);
-        if (r.second_attempt)
+        if (r.second_attempt) {
+            const std::string why =
+                r.second_attempt_error.empty() ? "" : " (the second attempt stopped: " + r.second_attempt_error + ")";
             std::fprintf(stderr, "%s: refinement gave up on some triangles and started again with nearly every vertex "
-                                 "of T that is not flat treated as curved; %s result kept%s%s\n",
-                         program, r.second_attempt_kept ? "the second" : "the first",
-                         r.second_attempt_error.empty() ? "" : " (the second attempt stopped: ",
-                         r.second_attempt_error.empty() ? "" : (r.second_attempt_error + ")").c_str());
+                                 "of T that is not flat treated as curved; %s result kept%s\n",
+                         program, r.second_attempt_kept ? "the second" : "the first", why.c_str());
+        }
         if (r.wide_corners_left > 0)
             std::fprintf(stderr, "%s: %d corners above 180 degrees left\n", program, r.wide_corners_left);
         std::fprintf(stderr, "%s: %s; refined in %.3f s\n", program, r.valid_after ? "valid" : "INVALID", r.seconds);

@@ -423,6 +423,14 @@ ValidationReport violations_naming(const GeodesicTriangulation& g, ValidationRep
     return report;
 }
 
+/// collapse_edge(g, h) without its validity check: untangling judges the result on all of G.
+CollapseResult collapse_unchecked(GeodesicTriangulation& g, HalfedgeHandle h, geodesic::ExactGeodesic& propagation) {
+    CollapseOptions unchecked;
+    unchecked.check_validity = false;
+    unchecked.propagation = &propagation;
+    return collapse_edge(g, h, unchecked);
+}
+
 /// One untangling move: `run` does it on a copy of G with the propagation object of its thread, and returns how
 /// many operations it did (0: not possible there); a move of several steps can judge them with the count it is
 /// given. `key` names it by kind and coarse vertices.
@@ -654,10 +662,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
             {
                 auto run = [h](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                const CountViolations&) {
-                    CollapseOptions unchecked;
-                    unchecked.check_validity = false;
-                    unchecked.propagation = &propagation;
-                    return collapse_edge(trial, h, unchecked).done ? 1 : 0;
+                    return collapse_unchecked(trial, h, propagation).done ? 1 : 0;
                 };
                 moves.push_back({run, {k_collapse, index, g.coarse().to_vertex_handle(h).idx()}});
             }
@@ -720,10 +725,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) {
                 auto run = [h, nested, &options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                                  const CountViolations&) {
-                    CollapseOptions unchecked;
-                    unchecked.check_validity = false;
-                    unchecked.propagation = &propagation;
-                    const CollapseResult done = collapse_edge(trial, h, unchecked);
+                    const CollapseResult done = collapse_unchecked(trial, h, propagation);
                     if (!done.done) return 0;
                     std::vector<SurfacePoint> around{trial.location(done.kept)};
                     for (OpenMesh::VertexHandle u : trial.coarse().vv_range(done.kept))

@@ -147,21 +147,17 @@ double planar_removal_estimate(const GeodesicTriangulation& g, VertexHandle v) {
         apex);
 }
 
-double smallest_corner_of(const GeodesicTriangulation& g) {
-    double smallest = std::numeric_limits<double>::infinity();
-    for (FaceHandle f : g.coarse().faces())
-        for (HalfedgeHandle h : halfedges_of(g.coarse(), f)) smallest = std::min(smallest, corner_angle(g, h));
-    return smallest;
-}
+/// Corners at points of T whose cone angle is below this many times the minimum angle are exempt: a vertex of
+/// degree three or more there must have a smaller corner.
+constexpr double k_exempt_cone_factor = 3.0;
 
-/// G's smallest corner at a point of T whose cone angle is at least three times `min_angle_deg` (the corners that
-/// refinement does not exempt), or infinity.
-double smallest_corner_not_exempt(const GeodesicTriangulation& g, double min_angle_deg) {
-    const double bar = 3.0 * min_angle_deg * k_pi / 180.0;
+/// G's smallest corner at a point of T whose cone angle is at least `exempt_below` (0: every corner), or infinity.
+double smallest_corner_of(const GeodesicTriangulation& g, double exempt_below = 0.0) {
     double smallest = std::numeric_limits<double>::infinity();
     for (FaceHandle f : g.coarse().faces())
         for (HalfedgeHandle h : halfedges_of(g.coarse(), f))
-            if (cone_angle(g.fine().mesh, g.location(g.coarse().from_vertex_handle(h))) >= bar)
+            if (exempt_below <= 0.0 ||
+                cone_angle(g.fine().mesh, g.location(g.coarse().from_vertex_handle(h))) >= exempt_below)
                 smallest = std::min(smallest, corner_angle(g, h));
     return smallest;
 }
@@ -312,7 +308,9 @@ private:
             options_.progress(std::string(stage) + ": " + std::to_string(g_.coarse().n_faces()) + " faces");
     }
 
-    bool exempt(VertexHandle v) const { return cone_angle(g_.fine().mesh, g_.location(v)) < 3.0 * min_angle_; }
+    bool exempt(VertexHandle v) const {
+        return cone_angle(g_.fine().mesh, g_.location(v)) < k_exempt_cone_factor * min_angle_;
+    }
 
     /// f's smallest corner that is not exempt (or infinity) and its largest corner, in one pass over its corners;
     /// infinity and 0 for a face too small to refine.
@@ -838,10 +836,11 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
             finished = false;
         }
         second_result.second_attempt = true;
+        const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
         const bool better = finished && (second_result.small_corners_left < result.small_corners_left ||
                                          (second_result.small_corners_left == result.small_corners_left &&
-                                          smallest_corner_not_exempt(second, options.min_angle_deg) >
-                                              smallest_corner_not_exempt(g, options.min_angle_deg)));
+                                          smallest_corner_of(second, exempt_below) >
+                                              smallest_corner_of(g, exempt_below)));
         if (better) {
             g = std::move(second);
             result = second_result;
