@@ -84,6 +84,7 @@ public:
 
     double settled_radius_ = k_infinity;
     PropagationStats stats_;
+    std::size_t windows_created_before_ = 0;  ///< by the propagations before the current one
 
 private:
     /// The best known way to reach a point: its distance and what gives it.
@@ -221,6 +222,7 @@ void ExactGeodesic::Impl::reset() {
     stops_.clear();
     watches_.clear();
     goals_.clear();
+    windows_created_before_ += stats_.windows_created;
     stats_ = PropagationStats{};
     settled_radius_ = k_infinity;
 }
@@ -1146,6 +1148,10 @@ std::vector<SurfacePoint> ExactGeodesic::shortest_path(const SurfacePoint& targe
 double ExactGeodesic::settled_radius() const { return impl_->settled_radius_; }
 
 const PropagationStats& ExactGeodesic::stats() const { return impl_->stats_; }
+
+std::size_t ExactGeodesic::windows_created_total() const {
+    return impl_->windows_created_before_ + impl_->stats_.windows_created;
+}
 
 double path_length(const Mesh& mesh, const std::vector<SurfacePoint>& path) {
     double length = 0.0;

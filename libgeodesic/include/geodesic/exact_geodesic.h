@@ -83,6 +83,9 @@ public:
     /// stopped early (then only the stop points are).
     double settled_radius() const;
     const PropagationStats& stats() const;
+    /// Windows made by every propagate() of this object so far: a measure of the work done, the same on any machine,
+    /// for callers that bound their effort.
+    std::size_t windows_created_total() const;
 
 private:
     class Impl;
