@@ -452,12 +452,19 @@ enum MoveKind : int {
     k_collapse_and_untangle_nested
 };
 
+/// Work that a kind of move may do, in windows of propagation (FlipToDelaunayOptions::thorough_budget).
+struct WorkBudget {
+    std::size_t limit = 0;  ///< 0: no bound
+    std::size_t spent = 0;
+    bool spent_all() const { return limit > 0 && spent >= limit; }
+};
+
 /// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
 class Untangler {
 public:
     Untangler(GeodesicTriangulation& g, ValidationReport& report, const FlipToDelaunayOptions& options,
               FlipToDelaunayResult& result)
-        : g_(g), report_(report), result_(result), verdicts_(g, {}) {
+        : g_(g), report_(report), result_(result), given_propagation_(options.propagation), verdicts_(g, {}) {
         recount();
 #ifdef _OPENMP
         threads_ = options.threads > 0 ? options.threads : omp_get_max_threads();
@@ -472,14 +479,16 @@ public:
     /// move that helps is then found sooner, and none is left out. The moves are tried in batches of one per
     /// thread, in parallel; moves after the kept one in its batch are dropped uncounted, so that G and every count
     /// are the same for any thread count. A move that throws InvalidInput found G unfit for it around there
-    /// (untangling works on an invalid G): it counts as not possible.
-    bool keep_first_better(std::vector<Move> moves, int& kept) {
+    /// (untangling works on an invalid G): it counts as not possible. With a `budget`, each move tried spends the
+    /// work of its propagations, and none is tried once it is spent.
+    bool keep_first_better(std::vector<Move> moves, int& kept, WorkBudget* budget = nullptr) {
         std::stable_partition(moves.begin(), moves.end(), [&](const Move& m) { return !failed_.count(m.key); });
         struct Trial {
             std::optional<GeodesicTriangulation> g;
             std::optional<ValidationReport> report;
             int cheap = 0;  ///< violations of conditions 1-3
             int operations = 0;
+            std::size_t work = 0;  ///< windows that the move's propagations made
             bool better = false;
             std::exception_ptr error;
         };
@@ -496,11 +505,14 @@ public:
                 Trial& t = trials[static_cast<std::size_t>(i)];
                 try {
                     t.g.emplace(g_);
+                    geodesic::ExactGeodesic& p = propagation();
+                    const std::size_t work_before = p.windows_created_total();
                     try {
-                        t.operations = moves[first + static_cast<std::size_t>(i)].run(*t.g, propagation(), count_trial);
+                        t.operations = moves[first + static_cast<std::size_t>(i)].run(*t.g, p, count_trial);
                     } catch (const InvalidInput&) {
                         t.operations = 0;
                     }
+                    t.work = p.windows_created_total() - work_before;
                     t.better = t.operations > 0 &&
                                lowers_violations(*t.g, report_, verdicts_, *count_, t.cheap, t.report);
                 } catch (...) {
@@ -510,6 +522,7 @@ public:
             for (std::size_t i = 0; i < n; ++i) {
                 Trial& t = trials[i];
                 if (t.error) std::rethrow_exception(t.error);
+                if (budget) budget->spent += t.work;
                 if (t.better) {
                     if (!t.report) {
                         ValidationOptions no_overlay;
@@ -530,6 +543,10 @@ public:
                 }
                 ++(t.operations == 0 ? result_.untangle_refused : result_.untangle_rejected);
                 failed_.insert(moves[first + i].key);
+                if (budget && budget->spent_all() && first + i + 1 < moves.size()) {
+                    result_.thorough_budget_spent = true;
+                    return false;  // the moves after it in its batch are dropped uncounted, as after a kept one
+                }
             }
         }
         return false;
@@ -548,6 +565,7 @@ private:
 #ifdef _OPENMP
         k = static_cast<std::size_t>(omp_get_thread_num());
 #endif
+        if (k == 0 && given_propagation_) return *given_propagation_;
         if (!propagations_[k]) propagations_[k] = std::make_unique<geodesic::ExactGeodesic>(g_.fine().mesh);
         return *propagations_[k];
     }
@@ -556,7 +574,8 @@ private:
     ValidationReport& report_;
     FlipToDelaunayResult& result_;
     int threads_ = 1;
-    std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread
+    geodesic::ExactGeodesic* given_propagation_;  ///< FlipToDelaunayOptions::propagation, the calling thread's
+    std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per other thread
     std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
     detail::PolylineVerdicts verdicts_;    ///< condition 1 on G's polylines, for judging the trials
     std::optional<detail::ViolationCount> count_;  ///< G's violations of conditions 1-3, to count the trials'
@@ -564,7 +583,7 @@ private:
 
 /// Untangles by single flips, where no flip helps by fork splits, then by edge collapses, then by moving vertices,
 /// and with a few violations left by pairs of flips and longer moves (and with FlipToDelaunayOptions::thorough,
-/// collapses judged after untangling), while they strictly lower the number of violations (see
+/// collapses judged after untangling, within its budget of work), while they strictly lower the number of violations (see
 /// lowers_violations()), which bounds their number. With a `focus`, moves are sought only for the violations that
 /// name a coarse vertex at one of its locations, and of the last resorts only the collapses judged after
 /// untangling are tried, and only where `options.thorough` asks for them.
@@ -718,8 +737,14 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     // A collapse that raises the count can still be the way out (skull_thing74168, anchor_dense and boxpart at
     // their coarsest): each is judged after untangling what it leaves, with moves sought only for the violations
     // around the vertex kept, and without the other last resorts; `nested`, that untangling may itself end with
-    // such collapses (femur_cgal at 320 faces).
+    // such collapses (femur_cgal at 320 faces). Each trial untangles, so that they cost the more the longer G's
+    // geodesics are (gears at its coarsest: 3-35M windows each): options.thorough_budget bounds them all.
+    WorkBudget budget{options.thorough_budget};
     auto try_collapse_and_untangle = [&](bool nested) {
+        if (budget.spent_all()) {
+            result.thorough_budget_spent = true;
+            return false;
+        }
         std::vector<Move> moves;
         for (int index : candidate_vertices(g.coarse(), named))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) {
@@ -732,8 +757,10 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                         around.push_back(trial.location(u));
                     FlipToDelaunayOptions inner = options;
                     inner.threads = 1;  // the trials run in parallel already
+                    inner.propagation = &propagation;
                     inner.progress = nullptr;
                     inner.thorough = nested ? 1 : 0;
+                    inner.thorough_budget = options.thorough_budget / 2;
                     FlipToDelaunayResult inner_result;
                     ValidationReport inner_report = validate(trial);
                     untangle(trial, inner, inner_result, inner_report, &around);
@@ -742,7 +769,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                 const int kind = nested ? k_collapse_and_untangle_nested : k_collapse_and_untangle;
                 moves.push_back({run, {kind, index, g.coarse().to_vertex_handle(h).idx()}});
             }
-        return untangler.keep_first_better(moves, result.untangle_collapses);
+        return untangler.keep_first_better(moves, result.untangle_collapses, &budget);
     };
     // Only where nothing above helps and few violations are left; with a focus, only the collapses judged after
     // untangling, and only where asked for.

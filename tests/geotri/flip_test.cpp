@@ -32,6 +32,7 @@ using geodesic::Mesh;
 using geodesic::SurfacePoint;
 using test::decimated_coarse;
 using test::describe;
+using test::expect_same_polylines;
 using test::expect_valid_with_area;
 using test::fine_of;
 using test::nearest_vertex;
@@ -369,8 +370,7 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
             FlipToDelaunayOptions options;
             options.threads = 1;
             flip_to_delaunay(one_thread, options);
-            ASSERT_EQ(one_thread.coarse().n_edges(), g.coarse().n_edges()) << name;
-            for (auto e : g.coarse().edges()) EXPECT_EQ(one_thread.polyline(e), g.polyline(e)) << name;
+            expect_same_polylines(one_thread, g, name);
         }
         EXPECT_EQ(check.valid, r.valid_after) << name;
         EXPECT_EQ(check.violation_count, r.violations_after) << name;
@@ -422,20 +422,21 @@ TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_
     const std::string name = "cad/boxpart.obj";
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
 
+    // Without the collapses judged after untangling (thorough 0), which go on to make it valid.
+    FlipToDelaunayOptions plain;
+    plain.thorough = 0;
     GeodesicTriangulation g = traced;
-    const FlipToDelaunayResult r = flip_to_delaunay(g);
+    const FlipToDelaunayResult r = flip_to_delaunay(g, plain);
     EXPECT_GE(r.untangle_meeting_splits, 1);
     EXPECT_LT(total(r.violations_after), total(r.violations_before));
     EXPECT_EQ(validate(g).violation_count, r.violations_after);
     // A split and the operations that settle it run in one trial, on one thread: the same G for any thread count.
     for (int threads : {1, 3}) {
         GeodesicTriangulation again = traced;
-        FlipToDelaunayOptions with;
-        with.threads = threads;
-        const FlipToDelaunayResult same = flip_to_delaunay(again, with);
+        plain.threads = threads;
+        const FlipToDelaunayResult same = flip_to_delaunay(again, plain);
         EXPECT_EQ(same.untangle_meeting_splits, r.untangle_meeting_splits) << threads << " threads";
-        ASSERT_EQ(again.coarse().n_edges(), g.coarse().n_edges()) << threads << " threads";
-        for (auto e : g.coarse().edges()) EXPECT_EQ(again.polyline(e), g.polyline(e)) << threads << " threads";
+        expect_same_polylines(again, g, std::to_string(threads) + " threads");
     }
     std::cout << "[ flip     ] " << name << " at the coarsest level: " << total(r.violations_before) << " -> "
               << total(r.violations_after) << " violations, " << r.untangle_meeting_splits << " splits at meetings, "
@@ -470,9 +471,7 @@ TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_n
             FlipToDelaunayOptions with;
             with.threads = threads;
             flip_to_delaunay(again, with);
-            ASSERT_EQ(again.coarse().n_edges(), g.coarse().n_edges()) << c.name << ", " << threads << " threads";
-            for (auto e : g.coarse().edges())
-                EXPECT_EQ(again.polyline(e), g.polyline(e)) << c.name << ", " << threads << " threads";
+            expect_same_polylines(again, g, c.name + ", " + std::to_string(threads) + " threads");
         }
         std::cout << "[ flip     ] " << c.name << (c.coarsest ? " at the coarsest level: " : " at 320 faces: ")
                   << total(r.violations_before) << " -> " << total(r.violations_after) << " violations, "
@@ -489,8 +488,10 @@ TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only
     // until what it leaves is untangled around the vertex kept.
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
 
-    GeodesicTriangulation plain = traced;
-    const FlipToDelaunayResult stuck = flip_to_delaunay(plain);
+    FlipToDelaunayOptions plain;
+    plain.thorough = 0;
+    GeodesicTriangulation without = traced;
+    const FlipToDelaunayResult stuck = flip_to_delaunay(without, plain);
     EXPECT_TRUE(stuck.untangle_stuck);
     EXPECT_TRUE(stuck.last_resorts_tried);  // geotri-flip then suggests --thorough
     EXPECT_FALSE(stuck.valid_after);
@@ -501,39 +502,77 @@ TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only
     GeodesicTriangulation g = traced;
     const FlipToDelaunayResult r = flip_to_delaunay(g, thorough);
     EXPECT_TRUE(r.valid_after);
+    EXPECT_FALSE(r.thorough_budget_spent);
     expect_valid_with_area(g);
 
     GeodesicTriangulation again = traced;
     thorough.threads = 3;
     flip_to_delaunay(again, thorough);
-    ASSERT_EQ(again.coarse().n_edges(), g.coarse().n_edges());
-    for (auto e : g.coarse().edges()) EXPECT_EQ(again.polyline(e), g.polyline(e)) << "3 threads";
+    expect_same_polylines(again, g, "3 threads");
     std::cout << "[ flip     ] " << name << " at the coarsest level, thorough: " << total(r.violations_before)
               << " -> " << total(r.violations_after) << " violations (" << total(stuck.violations_after)
               << " without), " << r.untangle_collapses << " collapses, " << r.seconds << " s\n";
 }
 
-TEST(FlipToDelaunay, thorough_untangling_at_level_2_nests_those_collapses_and_makes_femur_cgal_valid_at_320_faces) {
+TEST(FlipToDelaunay, thorough_untangling_stops_where_its_budget_of_work_is_spent_the_same_for_any_thread_count) {
+    const char* name = "stress/anchor_dense.off";
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir() << "': the test needs "
+                     << name;
+    // The first collapse that level 1 does makes millions of windows and does not mend anchor_dense (the fifth
+    // does): a budget of one window stops after it, whichever thread tried it and whatever the others tried.
+    const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
+    FlipToDelaunayOptions plain;
+    plain.thorough = 0;
+    GeodesicTriangulation without = traced;
+    const FlipToDelaunayResult stuck = flip_to_delaunay(without, plain);
+
+    FlipToDelaunayOptions tight;
+    tight.thorough = 2;
+    tight.thorough_budget = 1;
+    tight.threads = 1;
+    GeodesicTriangulation g = traced;
+    const FlipToDelaunayResult r = flip_to_delaunay(g, tight);
+    EXPECT_TRUE(r.thorough_budget_spent);
+    EXPECT_FALSE(r.valid_after);
+    // The collapses that cannot be done cost nothing; the first that can spends the budget, and the G stays the one
+    // that plain untangling leaves, where an unbounded level 1 makes it valid (the test before).
+    EXPECT_GT(r.untangle_rejected + r.untangle_refused, stuck.untangle_rejected + stuck.untangle_refused);
+    EXPECT_EQ(r.untangle_collapses, stuck.untangle_collapses);
+    expect_same_polylines(g, without, "a budget of one window");
+    for (int threads : {2, 3}) {
+        GeodesicTriangulation again = traced;
+        tight.threads = threads;
+        const FlipToDelaunayResult other = flip_to_delaunay(again, tight);
+        EXPECT_TRUE(other.thorough_budget_spent) << threads << " threads";
+        EXPECT_EQ(other.untangle_rejected, r.untangle_rejected) << threads << " threads";
+        EXPECT_EQ(other.untangle_refused, r.untangle_refused) << threads << " threads";
+        expect_same_polylines(again, g, std::to_string(threads) + " threads");
+    }
+}
+
+TEST(FlipToDelaunay, by_default_untangling_nests_those_collapses_and_makes_femur_cgal_valid_at_320_faces) {
     const char* name = "anatomy/femur_cgal.off";
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir() << "': the test needs "
                      << name;
-    // Around its tiny handles, level 1 takes femur_cgal from 16 violations to 3 and sticks; level 2 goes on with
-    // collapses whose untangling may itself end with such collapses.
+    // Around its tiny handles, level 1 takes femur_cgal from 16 violations to 3 and sticks; level 2, the default
+    // within its budget, goes on with collapses whose untangling may itself end with such collapses.
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, false);
 
-    FlipToDelaunayOptions thorough;
-    thorough.thorough = 1;
-    GeodesicTriangulation level_1 = traced;
-    const FlipToDelaunayResult stuck = flip_to_delaunay(level_1, thorough);
+    FlipToDelaunayOptions level_1;
+    level_1.thorough = 1;
+    level_1.thorough_budget = 0;
+    GeodesicTriangulation stuck_g = traced;
+    const FlipToDelaunayResult stuck = flip_to_delaunay(stuck_g, level_1);
     EXPECT_FALSE(stuck.valid_after);
 
-    thorough.thorough = 2;
     GeodesicTriangulation g = traced;
-    const FlipToDelaunayResult r = flip_to_delaunay(g, thorough);
+    const FlipToDelaunayResult r = flip_to_delaunay(g);
     EXPECT_TRUE(r.valid_after);
+    EXPECT_FALSE(r.thorough_budget_spent);
     expect_valid_with_area(g);
-    std::cout << "[ flip     ] " << name << " at 320 faces, thorough 2: " << total(r.violations_before) << " -> "
+    std::cout << "[ flip     ] " << name << " at 320 faces, by default: " << total(r.violations_before) << " -> "
               << total(r.violations_after) << " violations (" << total(stuck.violations_after) << " with 1), "
               << r.untangle_collapses << " collapses, " << r.seconds << " s\n";
 }

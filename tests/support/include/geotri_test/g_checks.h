@@ -30,6 +30,14 @@ inline void expect_valid_with_area(const GeodesicTriangulation& g) {
     EXPECT_NEAR(r.patch_area, r.fine_area, 1e-9 * r.fine_area);
 }
 
+/// The same coarse mesh with the same polyline on every edge: what untangling or refining gives for any thread count.
+inline void expect_same_polylines(const GeodesicTriangulation& a, const GeodesicTriangulation& b,
+                                  const std::string& what) {
+    ASSERT_EQ(a.coarse().n_vertices(), b.coarse().n_vertices()) << what;
+    ASSERT_EQ(a.coarse().n_edges(), b.coarse().n_edges()) << what;
+    for (auto e : a.coarse().edges()) EXPECT_EQ(a.polyline(e), b.polyline(e)) << what << ", edge " << e.idx();
+}
+
 /// The unit cube (each side a 4 x 4 grid of squares) with G made of the cube's eight corners (corner k at
 /// (k & 1, k >> 1 & 1, k >> 2 & 1)) and one diagonal per side, traced. It is valid.
 inline GeodesicTriangulation unit_cube_g() {
