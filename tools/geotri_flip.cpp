@@ -52,11 +52,11 @@ int run(tools::Tool& tool) {
     int thorough = 2;
     CLI::Option* thorough_option =
         app.add_option("--thorough", thorough,
-                       "Where untangling is stuck with few violations left, 1: also try each edge collapse there judged\n"
-                       "after untangling what it leaves; 2: then with that untangling ending with such collapses too;\n"
-                       "0: neither. Given, they go on to the end, which can take minutes where they mend nothing.\n"
-                       "Default: 2, stopping after 10^8 windows of propagation (about 25 s on 2 cores; the same\n"
-                       "result on any machine)")
+                       "Where untangling is stuck with few violations left, 1: also try each edge collapse\n"
+                       "there, judged after untangling what it leaves; 2: then with that untangling ending\n"
+                       "with such collapses too; 0: neither. Default: 2, until they have made 10^8 windows of\n"
+                       "propagation (about 25 s on 2 cores; the same result on any machine). Given, they go\n"
+                       "on to the end, which can take minutes where they mend nothing")
             ->check(CLI::Range(0, 2));
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
         ->check(CLI::ExistingFile);
