@@ -87,7 +87,7 @@ def sweep_one(mesh, options, work):
     if chk is None:
         return stop(f"check failed: {err}")
     row.append(verdict_of(chk))
-    thorough = ["--thorough", str(options.thorough)] if options.thorough else []
+    thorough = ["--thorough", str(options.thorough)] if options.thorough is not None else []
     code, flp, times["flip"], err = run("flip", [f"{stem}.gtri", "-o", f"{stem}.flip.gtri", *threads, *thorough],
                                         options.build)
     if flp is None:
@@ -130,7 +130,8 @@ def main():
     parser.add_argument("--faces", type=int, default=320)
     parser.add_argument("--threads", type=int, default=0)
     parser.add_argument("--min-angle", type=float, default=25.0, help="refine to this angle (0: no refinement)")
-    parser.add_argument("--thorough", type=int, default=0, choices=[0, 1, 2], help="geotri-flip --thorough LEVEL")
+    parser.add_argument("--thorough", type=int, choices=[0, 1, 2],
+                        help="geotri-flip --thorough LEVEL (default: geotri-flip's own, level 2 within its budget)")
     parser.add_argument("--timeout", type=float, default=TIMEOUT, help="stop a tool run after this many seconds")
     parser.add_argument("--build", type=pathlib.Path, default=ROOT / "build")
     parser.add_argument("--data", type=pathlib.Path, default=ROOT.parent / "shared" / "data")
