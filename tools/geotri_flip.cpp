@@ -55,7 +55,7 @@ int run(tools::Tool& tool) {
                        "Where untangling is stuck with few violations left, 1: also try each edge collapse\n"
                        "there, judged after untangling what it leaves; 2: then with that untangling ending\n"
                        "with such collapses too; 0: neither. Default: 2, until they have made 10^8 windows of\n"
-                       "propagation (about 25 s on 2 cores; the same result on any machine). Given, they go\n"
+                       "propagation (20-40 s on 2 cores; the same result on any machine). Given, they go\n"
                        "on to the end, which can take minutes where they mend nothing")
             ->check(CLI::Range(0, 2));
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
@@ -114,6 +114,7 @@ int run(tools::Tool& tool) {
         summary.add("untangle_stuck", r.untangle_stuck);
         summary.add("last_resorts_tried", r.last_resorts_tried);
         summary.add("thorough_budget_spent", r.thorough_budget_spent);
+        summary.add("thorough_windows", r.thorough_windows);
         summary.add("improve_flips", r.improve_flips);
         summary.add("improve_passes", r.improve_passes);
         summary.add("improve_plans", r.improve_plans);

@@ -18,8 +18,10 @@ source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"
 
 tripod=$data/cad/tripod.off                  # genus 0: its coarsest G (a tetrahedron) is valid
 femur=$data/anatomy/femur_thing157696.stl    # at 320 faces, its traced G is invalid and flips make it valid
-anchor=$data/cad/anchor.off                  # genus 4: at 320 faces, untangling needs fork splits too
-joint=$data/cad/joint.off                    # at its coarsest (32 faces), untangling leaves it invalid
+anchor=$data/cad/anchor.off                  # genus 4: at 320 faces, untangling needs fork splits too; at its
+                                             # coarsest, traced by shortest geodesics, it is left invalid
+joint=$data/cad/joint.off                    # at its coarsest, traced by shortest geodesics, only the last resorts
+                                             # of untangling make it valid
 
 case "$case_name" in
 
@@ -135,9 +137,10 @@ threads_give_identical_files)
     ;;
 
 still_invalid_exits_three_and_is_written)
-    # The joint at the coarsest level its genus allows: untangling gets stuck (docs/algorithms.md, Limits; should it
-    # learn to mend this one, take another mesh that it leaves invalid from there).
-    make_gtri "$joint" --coarsest
+    # The anchor at the coarsest level its genus allows: untangling gets stuck, with too many violations left for its
+    # last resorts (docs/algorithms.md, Limits; should it learn to mend this one, take another mesh that it leaves
+    # invalid from there).
+    make_gtri "$anchor" --coarsest
     run in_g.gtri -o out.gtri
     expect_rc 3
     [ -s out.gtri ] || fail "out.gtri is not written"
@@ -145,6 +148,21 @@ still_invalid_exits_three_and_is_written)
     grep -q "more faces" stderr || fail "stderr does not suggest a coarse mesh with more faces"
     check out.gtri
     [ $? -eq 3 ] || fail "geotri-check does not find out.gtri invalid"
+    ;;
+
+last_resorts_mend_the_joint_by_default)
+    # Stuck after every other move, the joint at its coarsest is mended by a collapse judged after untangling what
+    # it leaves, which runs by default, within its budget (3e7 windows of 1e8); --thorough 0 leaves it invalid.
+    make_gtri "$joint" --coarsest
+    run in_g.gtri -o out.gtri --json --quiet
+    expect_rc 0
+    [ "$(json_value last_resorts_tried)" = "true" ] || fail "last_resorts_tried is not true"
+    [ "$(json_value thorough_windows)" -gt 0 ] || fail "no work counted for the last resorts"
+    [ "$(json_value thorough_budget_spent)" = "false" ] || fail "the budget is spent on the joint"
+    check out.gtri || fail "geotri-check finds out.gtri invalid"
+    run in_g.gtri -o plain.gtri --thorough 0 --json --quiet
+    expect_rc 3
+    [ "$(json_value thorough_windows)" = "0" ] || fail "--thorough 0 counts work for the last resorts"
     ;;
 
 error_empty_gtri)

@@ -35,15 +35,15 @@ struct FlipToDelaunayOptions {
     /// Untangling, where nothing else helps with at most 16 violations of conditions 1-3 left: 1, also try each
     /// collapse of an edge at a vertex that they name, judged after untangling what it leaves around the vertex
     /// kept; 2, then again with that untangling itself ending with such collapses where it is stuck. 1 made three
-    /// more meshes valid at their coarsest (skull_thing74168, anchor_dense, boxpart: 5-23 s each) and 2 femur_cgal
-    /// at 320 faces (23 s), but where they mend nothing they cost minutes (gears at its coarsest: 8 s with 0, 144 s
+    /// more meshes valid at their coarsest (skull_thing74168, anchor_dense, boxpart: 4-17 s each) and 2 femur_cgal
+    /// at 320 faces (7 s), but where they mend nothing they cost minutes (gears at its coarsest: 8 s with 0, 144 s
     /// with 1, invalid either way) unless thorough_budget bounds them. 0: neither.
     int thorough = 2;
     /// The work that those collapses may do, in windows of propagation (geodesic::ExactGeodesic::
     /// windows_created_total(), the same on any machine and for any thread count): once it is spent, untangling
-    /// stops with what it has (FlipToDelaunayResult::thorough_budget_spent). 10^8 is about 25 s on 2 cores of our
-    /// development machine, and enough for every mesh that they mend above (femur_cgal 65M, skull_thing74168 84M).
-    /// The untangling inside one trial at level 2 may do half of it. 0: no bound.
+    /// stops with what it has (FlipToDelaunayResult::thorough_budget_spent). 10^8 is 20-40 s on 2 cores of our
+    /// development machine, and enough for every mesh that they mend above (skull_thing74168 needs 72M, the others
+    /// 7-13M). The untangling inside one trial at level 2 may do half of it. 0: no bound.
     std::size_t thorough_budget = 100'000'000;
     /// Improve: when the shortest c-d geodesic leaves the two patches, try the shortest path inside them.
     bool region_fallback = true;
@@ -89,6 +89,8 @@ struct FlipToDelaunayResult {
     bool last_resorts_tried = false;
     /// Untangling stopped because FlipToDelaunayOptions::thorough_budget was spent.
     bool thorough_budget_spent = false;
+    /// The work that the collapses judged after untangling did, in windows of propagation (counted as the budget).
+    std::size_t thorough_windows = 0;
 
     int improve_flips = 0;
     int improve_plans = 0;          ///< flips computed (one propagation each) while improving
