@@ -575,7 +575,7 @@ private:
     FlipToDelaunayResult& result_;
     int threads_ = 1;
     geodesic::ExactGeodesic* given_propagation_;  ///< FlipToDelaunayOptions::propagation, the calling thread's
-    std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per other thread
+    std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread without a given one
     std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
     detail::PolylineVerdicts verdicts_;    ///< condition 1 on G's polylines, for judging the trials
     std::optional<detail::ViolationCount> count_;  ///< G's violations of conditions 1-3, to count the trials'
@@ -760,7 +760,9 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                     inner.propagation = &propagation;
                     inner.progress = nullptr;
                     inner.thorough = nested ? 1 : 0;
-                    inner.thorough_budget = options.thorough_budget / 2;
+                    // Half the budget, and never 0 where there is one: 0 would lift it.
+                    inner.thorough_budget =
+                        options.thorough_budget > 0 ? std::max<std::size_t>(1, options.thorough_budget / 2) : 0;
                     FlipToDelaunayResult inner_result;
                     ValidationReport inner_report = validate(trial);
                     untangle(trial, inner, inner_result, inner_report, &around);

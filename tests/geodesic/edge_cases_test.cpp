@@ -364,7 +364,7 @@ TEST(ExactGeodesicReuse, one_object_for_many_propagations_gives_the_results_of_f
         EXPECT_EQ(reused.stats().windows_created, fresh.stats().windows_created);
         EXPECT_EQ(reused.stats().queue_pops, fresh.stats().queue_pops);
         EXPECT_EQ(reused.stats().stopped_early, fresh.stats().stopped_early);
-        // The queries above make windows of their own, which count nowhere: only propagate()'s are work done.
+        // Only propagate()'s windows are work done (without keep_windows, the queries' own would count nowhere).
         windows += fresh.stats().windows_created;
         EXPECT_EQ(reused.windows_created_total(), windows);
         EXPECT_EQ(fresh.windows_created_total(), fresh.stats().windows_created);

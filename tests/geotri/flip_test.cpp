@@ -536,7 +536,7 @@ TEST(FlipToDelaunay, thorough_untangling_stops_where_its_budget_of_work_is_spent
     EXPECT_TRUE(r.thorough_budget_spent);
     EXPECT_FALSE(r.valid_after);
     // The collapses that cannot be done cost nothing; the first that can spends the budget, and the G stays the one
-    // that plain untangling leaves, where an unbounded level 1 makes it valid (the test before).
+    // that plain untangling leaves, where level 1 with the default budget makes it valid (the test before).
     EXPECT_GT(r.untangle_rejected + r.untangle_refused, stuck.untangle_rejected + stuck.untangle_refused);
     EXPECT_EQ(r.untangle_collapses, stuck.untangle_collapses);
     expect_same_polylines(g, without, "a budget of one window");

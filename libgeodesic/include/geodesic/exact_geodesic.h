@@ -84,7 +84,8 @@ public:
     double settled_radius() const;
     const PropagationStats& stats() const;
     /// Windows made by every propagate() of this object so far: a measure of the work done, the same on any machine,
-    /// for callers that bound their effort.
+    /// for callers that bound their effort. The propagations that queries run again without keep_windows are not
+    /// counted.
     std::size_t windows_created_total() const;
 
 private:
