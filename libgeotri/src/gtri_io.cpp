@@ -173,6 +173,7 @@ struct RawEdge {
 
 struct RawGtri {
     GtriHeader header;
+    int fine_line = 0;  ///< of its "fine" line
     std::vector<SurfacePoint> locations;
     std::vector<int> location_lines;
     MeshData faces;  ///< positions are placeholders
@@ -182,7 +183,8 @@ struct RawGtri {
     std::vector<std::vector<int>> point_lines;  ///< per edge, per point
 };
 
-GtriHeader parse_header(LineReader& in) {
+/// The header; `fine_line`, when given, receives the number of the "fine" line.
+GtriHeader parse_header(LineReader& in, int* fine_line = nullptr) {
     GtriHeader header;
     std::vector<std::string_view> w = words(in.next("the line 'gtri 1'"));
     if (w.size() != 2 || w[0] != "gtri") in.fail("not a .gtri file (its first line should be 'gtri 1')");
@@ -193,9 +195,14 @@ GtriHeader parse_header(LineReader& in) {
                 std::to_string(k_gtri_version) + ")");
     header.version = static_cast<int>(version);
 
-    std::string_view line = in.next("the line 'fine PATH'");
-    if (line.substr(0, 5) != "fine " || line.size() == 5) in.fail("expected 'fine PATH'");
-    header.fine_path = std::string(line.substr(5));
+    // PATH is the rest of the line after the separators (spaces or tabs) that follow "fine": it may hold spaces.
+    const std::string_view line = in.next("the line 'fine PATH'");
+    const std::size_t path_start = line.find_first_not_of(" \t", 4);
+    if (line.substr(0, 4) != "fine" || line.size() < 5 || (line[4] != ' ' && line[4] != '\t') ||
+        path_start == std::string_view::npos)
+        in.fail("expected 'fine PATH'");
+    header.fine_path = std::string(line.substr(path_start));
+    if (fine_line != nullptr) *fine_line = in.line_number();
 
     w = words(in.next("the line 'fine_checksum HEX'"));
     if (w.size() != 2 || w[0] != "fine_checksum" || w[1].size() != 16 ||
@@ -214,18 +221,35 @@ GtriHeader parse_header(LineReader& in) {
     return header;
 }
 
-/// "NAME N": the count after the section's name.
-int parse_section(LineReader& in, const char* name) {
+// The fewest bytes that an item can take, its line break included: "v:0", "0 1 2", "edge 0 0 1 0 0".
+constexpr std::size_t k_min_point_bytes = 4;
+constexpr std::size_t k_min_face_bytes = 6;
+constexpr std::size_t k_min_edge_bytes = 15;
+
+/// Refuses, before anything is allocated for them, `count` items that the rest of the file cannot hold: a corrupt
+/// count must not cost gigabytes (or end in std::bad_alloc). The bound is a lower one, so no valid file is refused.
+void check_room(const LineReader& in, int count, std::size_t min_bytes, const std::string& what,
+                const char* one) {
+    const std::size_t left = in.bytes_left();
+    if (static_cast<unsigned long long>(count) * min_bytes > left)
+        in.fail(what + ", but only " + std::to_string(left) + (left == 1 ? " byte follows" : " bytes follow") +
+                " (" + one + " takes at least " + std::to_string(min_bytes) + ")");
+}
+
+/// "NAME N": the count after the section's name, checked against the bytes that follow (`min_bytes` per item).
+int parse_section(LineReader& in, const char* name, std::size_t min_bytes, const char* one) {
     const std::vector<std::string_view> w = words(in.next((std::string("the line '") + name + " N'").c_str()));
     if (w.size() != 2 || w[0] != name) in.fail(std::string("expected '") + name + " N'");
-    return parse_count(in, w[1], (std::string(name) + " count").c_str());
+    const int count = parse_count(in, w[1], (std::string(name) + " count").c_str());
+    check_room(in, count, min_bytes, std::to_string(count) + " " + name, one);
+    return count;
 }
 
 RawGtri parse_body(LineReader& in, GtriHeader header) {
     RawGtri raw;
     raw.header = std::move(header);
 
-    const int num_vertices = parse_section(in, "vertices");
+    const int num_vertices = parse_section(in, "vertices", k_min_point_bytes, "a vertex location");
     raw.locations.resize(static_cast<std::size_t>(num_vertices));
     raw.location_lines.resize(static_cast<std::size_t>(num_vertices));
     for (int v = 0; v < num_vertices; ++v) {
@@ -235,7 +259,7 @@ RawGtri parse_body(LineReader& in, GtriHeader header) {
         raw.location_lines[static_cast<std::size_t>(v)] = in.line_number();
     }
 
-    const int num_faces = parse_section(in, "faces");
+    const int num_faces = parse_section(in, "faces", k_min_face_bytes, "a face");
     raw.faces_line = in.line_number();
     raw.faces.positions.assign(static_cast<std::size_t>(num_vertices), Eigen::Vector3d::Zero());
     raw.faces.triangles.resize(static_cast<std::size_t>(num_faces));
@@ -251,7 +275,7 @@ RawGtri parse_body(LineReader& in, GtriHeader header) {
         }
     }
 
-    const int num_edges = parse_section(in, "edges");
+    const int num_edges = parse_section(in, "edges", k_min_edge_bytes, "an edge block");
     raw.edges_line = in.line_number();
     raw.edges.resize(static_cast<std::size_t>(num_edges));
     raw.point_lines.resize(static_cast<std::size_t>(num_edges));
@@ -271,6 +295,8 @@ RawGtri parse_body(LineReader& in, GtriHeader header) {
         if (count == 1) in.fail("a polyline has no points (not traced) or at least two");
         double length = 0.0;
         if (!parse_double(w[5], length) || length < 0.0) in.fail("bad length " + quoted(w[5]));
+        check_room(in, count, k_min_point_bytes,
+                   "edge " + std::to_string(e) + " has " + std::to_string(count) + " points", "a point");
         edge.points.resize(static_cast<std::size_t>(count));
         std::vector<int>& lines = raw.point_lines[static_cast<std::size_t>(e)];
         lines.resize(static_cast<std::size_t>(count));
@@ -334,8 +360,11 @@ GeodesicTriangulation build(const LineReader& in, RawGtri raw, std::shared_ptr<c
 }
 
 RawGtri parse_file(LineReader& in) {
-    GtriHeader header = parse_header(in);
-    return parse_body(in, std::move(header));
+    int fine_line = 0;
+    GtriHeader header = parse_header(in, &fine_line);
+    RawGtri raw = parse_body(in, std::move(header));
+    raw.fine_line = fine_line;
+    return raw;
 }
 
 }  // namespace
@@ -343,9 +372,11 @@ RawGtri parse_file(LineReader& in) {
 void write_gtri(const std::string& path, const GeodesicTriangulation& g) {
     const FineMesh& fine = g.fine();
     if (fine.path.empty()) throw InvalidInput(path + ": the fine mesh has no file to refer to (FineMesh::path is empty)");
-    const std::string fine_path = relative_fine_path(path, fine.path);
+    std::string fine_path = relative_fine_path(path, fine.path);
     if (fine_path.find_first_of("\r\n") != std::string::npos)
         throw InvalidInput(path + ": the fine mesh's path holds a line break");
+    // The reader skips the separators after "fine": a relative path that starts with one gets "./" in front.
+    if (!fine_path.empty() && (fine_path.front() == ' ' || fine_path.front() == '\t')) fine_path = "./" + fine_path;
     const CoarseMesh& coarse = g.coarse();
     for (auto v : coarse.vertices())
         if (g.location(v).kind == PointKind::vertex && g.location(v).vertex < 0)
@@ -423,11 +454,17 @@ GeodesicTriangulation read_gtri(const std::string& path, const std::string& fine
     LineReader in(path, read_text(path));
     RawGtri raw = parse_file(in);
     const std::string fine_path = fine_override.empty() ? raw.header.resolved_fine_path : fine_override;
+    std::error_code error;
     if (fine_override.empty()) {
-        std::error_code error;
         if (!fs::exists(fine_path, error))
             throw IOError(path + ": its fine mesh " + raw.header.fine_path + " is not at " + fine_path +
                           " (give its path with --fine)");
+        if (fs::is_directory(fine_path, error))
+            in.fail_at(raw.fine_line, "its fine mesh '" + raw.header.fine_path + "' is a folder" +
+                                          (fine_path == raw.header.fine_path ? "" : " (" + fine_path + ")") +
+                                          ", not a mesh file");
+    } else if (fs::is_directory(fine_path, error)) {
+        throw IOError(path + ": its fine mesh " + fine_path + " is a folder, not a mesh file");
     }
     auto fine = std::make_shared<const FineMesh>(load_fine_mesh(fine_path));
     return build(in, std::move(raw), std::move(fine), fine_path);

@@ -50,6 +50,8 @@ public:
     }
 
     int line_number() const { return line_number_; }
+    /// Bytes after the last line returned: what the rest of the file can still hold.
+    std::size_t bytes_left() const { return text_.size() - pos_; }
     const std::string& path() const { return path_; }
 
     [[noreturn]] void fail(const std::string& what) const { fail_at(line_number_, what); }

@@ -390,6 +390,116 @@ TEST_F(GtriIO, corrupt_files_are_io_errors_naming_the_line) {
     expect_io_error(replace_first(text, "end\n", "fin\n"), "expected 'end'", "no end");
 }
 
+TEST_F(GtriIO, counts_beyond_the_file_are_refused_before_allocating) {
+    const std::string path = (dir_ / "out" / "g.gtri").string();
+    geotri::write_gtri(path, traced());
+    const std::string text = slurp(path);
+    // The bytes after a line that starts with `prefix`: what a count on that line is checked against.
+    auto bytes_after = [&](const std::string& prefix) {
+        const std::size_t at = text.find("\n" + prefix);
+        EXPECT_NE(at, std::string::npos) << prefix;
+        return std::to_string(text.size() - (text.find('\n', at + 1) + 1));
+    };
+    // Each of these once took gigabytes or ended in std::bad_alloc ("out of memory", with no file or line).
+    const std::string vertices_at = "line " + std::to_string(line_of(text, "vertices")) + ": ";
+    expect_io_error(replace_first(text, "vertices 4\n", "vertices 100000000\n"),
+                    vertices_at + "100000000 vertices, but only " + bytes_after("vertices") + " bytes follow",
+                    "vertex count beyond the file");
+    expect_io_error(replace_first(text, "vertices 4\n", "vertices 2000000000\n"), vertices_at + "2000000000 vertices",
+                    "vertex count near INT_MAX");
+    expect_io_error(replace_first(text, "faces 4\n", "faces 2000000000\n"),
+                    "line " + std::to_string(line_of(text, "faces")) + ": 2000000000 faces, but only " +
+                        bytes_after("faces") + " bytes follow",
+                    "face count beyond the file");
+    expect_io_error(replace_first(text, "edges 6\n", "edges 2147483647\n"),
+                    "line " + std::to_string(line_of(text, "edges")) + ": 2147483647 edges, but only " +
+                        bytes_after("edges") + " bytes follow",
+                    "edge count beyond the file");
+    // An edge block's point count K.
+    const int first_edge = line_of(text, "edge ");
+    std::istringstream edge_words(text.substr(text.find("\nedge ") + 1));
+    std::string word, from, to, count, length;
+    edge_words >> word >> word >> from >> to >> count >> length;
+    const std::string edge_line = "edge 0 " + from + " " + to + " " + count + " " + length + "\n";
+    expect_io_error(replace_first(text, edge_line, "edge 0 " + from + " " + to + " 2147483647 " + length + "\n"),
+                    "line " + std::to_string(first_edge) + ": edge 0 has 2147483647 points, but only " +
+                        bytes_after("edge ") + " bytes follow",
+                    "point count beyond the file");
+}
+
+TEST_F(GtriIO, shortest_possible_items_are_not_refused_by_the_count_checks) {
+    // Every item as short as the format allows ("v:0", "0 1 2", "edge 0 0 1 0 0"), and no final line break: the
+    // bounds on the counts must stay below what a real file takes.
+    GeodesicTriangulation g(fine_, geotri::make_coarse_mesh(tetrahedron_on(fine_->mesh), "tetrahedron"));
+    for (int v = 0; v < 4; ++v) g.set_location(VertexHandle(v), SurfacePoint::at_vertex(v));
+    const std::string path = (dir_ / "out" / "g.gtri").string();
+    geotri::write_gtri(path, g);
+    std::string text = slurp(path);
+    ASSERT_NE(text.find("\nv:0\nv:1\nv:2\nv:3\nfaces 4\n"), std::string::npos) << text;
+    ASSERT_NE(text.find(" 0 0\nend\n"), std::string::npos) << text;
+    text.pop_back();
+    spit(path, text);
+    const GeodesicTriangulation back = geotri::read_gtri(path);
+    EXPECT_EQ(back.coarse().n_edges(), 6u);
+    EXPECT_EQ(back.location(VertexHandle(3)), SurfacePoint::at_vertex(3));
+}
+
+TEST_F(GtriIO, fine_path_may_follow_tabs_and_spaces) {
+    const std::string path = (dir_ / "out" / "g.gtri").string();
+    const GeodesicTriangulation g = traced();
+    geotri::write_gtri(path, g);
+    const std::string text = slurp(path);
+    for (const std::string separator : {"\t", " \t ", "   "}) {
+        spit(path, replace_first(text, "fine ../", "fine" + separator + "../"));
+        try {
+            expect_identical(g, geotri::read_gtri(path));
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "separator '" << separator << "': " << e.what();
+        }
+        EXPECT_EQ(geotri::read_gtri_header(path).fine_path, "../meshes/sphere.off");
+    }
+    const int fine_line = line_of(text, "fine ");
+    const std::string at = "line " + std::to_string(fine_line) + ": expected 'fine PATH'";
+    expect_io_error(replace_first(text, "fine ../meshes/sphere.off\n", "fine\t\n"), at, "only a tab after 'fine'");
+    expect_io_error(replace_first(text, "fine ../meshes/sphere.off\n", "fine\n"), at, "no path");
+    expect_io_error(replace_first(text, "fine ../", "fineX ../"), at, "no separator after 'fine'");
+}
+
+TEST_F(GtriIO, fine_path_with_a_leading_space_round_trips) {
+    // The reader skips the separators after "fine", so the writer spells such a path "./ sphere.off".
+    const std::string spaced = (dir_ / "out" / " sphere.off").string();
+    fs::copy_file(fine_path_, spaced);
+    auto fine = std::make_shared<const geotri::FineMesh>(geotri::load_fine_mesh(spaced));
+    GeodesicTriangulation g(fine, geotri::make_coarse_mesh(tetrahedron_on(fine->mesh), "tetrahedron"));
+    geotri::trace(g);
+    const std::string path = (dir_ / "out" / "g.gtri").string();
+    geotri::write_gtri(path, g);
+    EXPECT_NE(slurp(path).find("\nfine ./ sphere.off\n"), std::string::npos);
+    const GeodesicTriangulation back = geotri::read_gtri(path);
+    expect_identical(g, back);
+    EXPECT_TRUE(fs::equivalent(back.fine().path, spaced));
+}
+
+TEST_F(GtriIO, fine_path_that_is_a_folder_names_the_gtri_file) {
+    const std::string path = (dir_ / "out" / "g.gtri").string();
+    geotri::write_gtri(path, traced());
+    const std::string text = slurp(path);
+    const std::string at = "line " + std::to_string(line_of(text, "fine ")) + ": its fine mesh ";
+    expect_io_error(replace_first(text, "fine ../meshes/sphere.off\n", "fine .\n"), at + "'.' is a folder",
+                    "the .gtri file's own folder");
+    expect_io_error(replace_first(text, "fine ../meshes/sphere.off\n", "fine ../meshes\n"),
+                    at + "'../meshes' is a folder", "another folder");
+    // The same through an override.
+    try {
+        geotri::read_gtri(path, (dir_ / "meshes").string());
+        ADD_FAILURE() << "a folder as the override: no error";
+    } catch (const geotri::IOError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+        EXPECT_NE(message.find("is a folder"), std::string::npos) << message;
+    }
+}
+
 TEST_F(GtriIO, comments_blank_lines_and_crlf_are_accepted) {
     const std::string path = (dir_ / "out" / "g.gtri").string();
     const GeodesicTriangulation g = traced();
