@@ -1,6 +1,8 @@
 #include <geodesic/errors.h>
 #include <geotri/fine_mesh.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <numeric>
 #include <string>
@@ -34,6 +36,16 @@ std::string plural(std::size_t n, const std::string& what) {
     return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
 }
 
+std::string shortest(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
+}
+
+// Below this, every length, area and the geodesic arithmetic stay finite: a face's area squares its squared edge
+// lengths (overflow from about 1e77), and nothing else raises a coordinate to a higher power.
+constexpr double k_max_coordinate = 1e75;
+
 }  // namespace
 
 std::uint64_t fine_mesh_checksum(const std::vector<Eigen::Vector3d>& positions,
@@ -56,6 +68,14 @@ FineMesh make_fine_mesh(MeshData data, const std::string& name) {
     const std::string prefix = name.empty() ? std::string() : name + ": ";
     if (data.triangles.empty()) throw TopologyError(prefix + "mesh has no faces");
     const std::uint64_t checksum = fine_mesh_checksum(data.positions, data.triangles);
+    // Non-finite coordinates are geodesic::Mesh's to refuse (with its own message).
+    for (std::size_t v = 0; v < data.positions.size(); ++v)
+        for (int i = 0; i < 3; ++i) {
+            const double x = data.positions[v][i];
+            if (std::isfinite(x) && std::abs(x) > k_max_coordinate)
+                throw InvalidInput(prefix + "vertex " + std::to_string(v) + " has a coordinate of " + shortest(x) +
+                                   ", beyond +-" + shortest(k_max_coordinate) + " (areas would overflow)");
+        }
 
     // geodesic::Mesh checks indices, finiteness, repeated vertices, edges shared by more than two faces and
     // inconsistent orientation; its messages get the file name in front.
@@ -104,10 +124,28 @@ FineMesh make_fine_mesh(MeshData data, const std::string& name) {
         fine.component[v] = number;
     }
     std::vector<int> vertices(static_cast<std::size_t>(fine.num_components), 0), faces(vertices.size(), 0);
-    for (int v = 0; v < mesh.num_vertices(); ++v) ++vertices[static_cast<std::size_t>(fine.component[v])];
+    std::vector<int> first_vertex(vertices.size(), -1);
+    std::vector<double> area(vertices.size(), 0.0);
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+        const std::size_t c = static_cast<std::size_t>(fine.component[v]);
+        if (vertices[c]++ == 0) first_vertex[c] = v;
+    }
     for (int f = 0; f < mesh.num_faces(); ++f) {
-        ++faces[static_cast<std::size_t>(fine.component[static_cast<std::size_t>(mesh.triangle(f)[0])])];
-        if (mesh.face_area(f) == 0.0) ++fine.num_zero_area_faces;
+        const std::size_t c = static_cast<std::size_t>(fine.component[static_cast<std::size_t>(mesh.triangle(f)[0])]);
+        ++faces[c];
+        const double face_area = mesh.face_area(f);
+        if (face_area == 0.0) ++fine.num_zero_area_faces;
+        area[c] += face_area;
+    }
+    // Zero-area faces are allowed, but not a surface without area: it has no geodesics to speak of.
+    for (std::size_t c = 0; c < area.size(); ++c) {
+        if (area[c] > 0.0) continue;
+        const std::string what = area.size() == 1 ? std::string("mesh")
+                                                  : "component " + std::to_string(c) + " of " +
+                                                        std::to_string(area.size()) + " (from vertex " +
+                                                        std::to_string(first_vertex[c]) + ")";
+        throw InvalidInput(prefix + what + " has zero area (all " + (area.size() == 1 ? "its " : "") +
+                           plural(static_cast<std::size_t>(faces[c]), "face") + " are degenerate)");
     }
     fine.genus.resize(vertices.size());
     for (std::size_t c = 0; c < vertices.size(); ++c) fine.genus[c] = (2 - (vertices[c] - faces[c] / 2)) / 2;

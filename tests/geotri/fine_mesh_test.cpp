@@ -195,6 +195,59 @@ TEST(FineMesh, zero_area_faces_are_counted_not_refused) {
     EXPECT_EQ(fine.num_zero_area_faces, 1);  // face (1, 2, 3): 3 lies on the segment 1-2
 }
 
+TEST(FineMesh, mesh_at_one_point_is_refused) {
+    // Closed and oriented, but every vertex at the origin: every face, and so the surface, has zero area.
+    TempFile file(".off");
+    file.write("OFF\n4 4 0\n0 0 0\n0 0 0\n0 0 0\n0 0 0\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    EXPECT_EQ(message_of<InvalidInput>([&] { load_fine_mesh(file.path()); }),
+              file.path() + ": mesh has zero area (all its 4 faces are degenerate)");
+}
+
+TEST(FineMesh, collinear_mesh_is_refused) {
+    // All four vertices on a line: no face has area, though no two vertices coincide.
+    MeshData m = tetrahedron();
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+    EXPECT_EQ(message_of<InvalidInput>([&] { make_fine_mesh(m, "line"); }),
+              "line: mesh has zero area (all its 4 faces are degenerate)");
+}
+
+TEST(FineMesh, zero_area_component_is_refused_and_named) {
+    // A good tetrahedron, then one whose vertices all lie at (5, 5, 5).
+    MeshData m = tetrahedron();
+    const MeshData t = tetrahedron();
+    for (int i = 0; i < 4; ++i) m.positions.push_back({5, 5, 5});
+    for (auto tri : t.triangles) m.triangles.push_back({tri[0] + 4, tri[1] + 4, tri[2] + 4});
+    EXPECT_EQ(message_of<InvalidInput>([&] { make_fine_mesh(m, "two"); }),
+              "two: component 1 of 2 (from vertex 4) has zero area (all 4 faces are degenerate)");
+}
+
+TEST(FineMesh, huge_coordinate_is_refused) {
+    MeshData m = tetrahedron();
+    m.positions[2].z() = -1e200;
+    EXPECT_EQ(message_of<InvalidInput>([&] { make_fine_mesh(m, "huge"); }),
+              "huge: vertex 2 has a coordinate of -1e+200, beyond +-1e+75 (areas would overflow)");
+    // Just beyond the bound: at 1e80 the areas (from squared edge lengths squared) would be infinite.
+    m.positions = tetrahedron().positions;
+    for (Eigen::Vector3d& p : m.positions) p *= 1e80;
+    EXPECT_TRUE(contains(message_of<InvalidInput>([&] { make_fine_mesh(m, "large"); }), "beyond +-1e+75"));
+}
+
+TEST(FineMesh, very_small_and_very_large_scales_are_accepted) {
+    // (Below a scale of about 1e-77, a face's area, a product of two lengths, underflows to zero in double: such a
+    // mesh is refused as one of zero area.)
+    for (const double scale : {1e-60, 1e-30, 1e30, 1e70}) {
+        MeshData m = tetrahedron();
+        for (Eigen::Vector3d& p : m.positions) p *= scale;
+        try {
+            const FineMesh fine = make_fine_mesh(m, "scaled");
+            EXPECT_GT(fine.mesh.total_area(), 0.0) << scale;
+            EXPECT_EQ(fine.num_zero_area_faces, 0) << scale;
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "scale " << scale << ": " << e.what();
+        }
+    }
+}
+
 TEST(FineMesh, checksum_is_stable_and_sees_one_bit) {
     const MeshData m = tetrahedron();
     const std::uint64_t a = make_fine_mesh(m, "a").checksum;

@@ -22,9 +22,11 @@ struct FineMesh {
     std::vector<int> genus;          ///< per component: V - F/2 = 2 - 2 genus, since T is closed (E = 3F/2)
 };
 
-/// Reads `path` exactly (read_mesh) and checks it (make_fine_mesh). Throws IOError for a file problem and
-/// TopologyError for a mesh that is not closed, manifold and oriented; every message starts with the path and
-/// says what is wrong and how much of it ("14 boundary edges", "vertex 812 is non-manifold").
+/// Reads `path` exactly (read_mesh) and checks it (make_fine_mesh). Throws IOError for a file problem,
+/// TopologyError for a mesh that is not closed, manifold and oriented, and InvalidInput for bad numbers (a
+/// coordinate that is not finite or beyond 1e75, a mesh or component of zero area; faces of zero area are allowed);
+/// every message starts with the path and says what is wrong and how much of it ("14 boundary edges", "vertex 812
+/// is non-manifold").
 FineMesh load_fine_mesh(const std::string& path);
 
 /// Checks the arrays as load_fine_mesh does; `name` prefixes the messages.
