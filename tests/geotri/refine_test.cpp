@@ -195,6 +195,38 @@ TEST(Refine, corners_above_180_degrees_are_cut_in_two) {
     }
 }
 
+// Refinement cascades on skull_thing74168 at 25 degrees and stops at its default vertex cap, where corners above 180
+// degrees wait for the angle: they are cut then, with the bar at each face's own smallest corner. A cap that the
+// caller gives, even the default one, is kept to the letter: without that last pass, more such corners are left.
+TEST(Refine, corners_above_180_degrees_left_at_the_vertex_cap_are_cut_at_last) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    GeodesicTriangulation g = traced(test::shared_mesh("anatomy/skull_thing74168.stl").path, 320);
+    flip_to_delaunay(g);
+    ASSERT_TRUE(validate(g).valid) << describe(validate(g));
+    RefineOptions options;
+    options.min_angle_deg = 25.0;
+    options.max_new_vertices = 4 * static_cast<int>(g.coarse().n_faces()) + 100;  // the default, given
+    GeodesicTriangulation to_the_letter = g;
+    const RefineResult given = refine(to_the_letter, options);
+    options.max_new_vertices = 0;
+    const RefineResult r = refine(g, options);
+    std::cout << "[ refine   ] skull_thing74168 at 25 degrees, at the cap: " << given.wide_corners_left
+              << " corners above 180 degrees left with the cap given, " << r.wide_corners_left << " by default ("
+              << to_the_letter.coarse().n_faces() << " and " << g.coarse().n_faces() << " faces)\n";
+    ASSERT_TRUE(given.vertex_cap_reached) << "the test needs a refinement that stops at the cap";
+    EXPECT_TRUE(r.vertex_cap_reached);
+    EXPECT_GT(given.wide_corners_left, 0) << "the test needs such corners";
+    EXPECT_LT(r.wide_corners_left, given.wide_corners_left);
+    EXPECT_GT(g.coarse().n_faces(), to_the_letter.coarse().n_faces());
+    // No triangle comes out worse than the one it cuts: the smallest corner stays, and no corner is added below the
+    // angle.
+    EXPECT_EQ(r.angles_after.min_deg, given.angles_after.min_deg);
+    EXPECT_LE(r.small_corners_left, given.small_corners_left);
+    expect_valid_with_area(g);
+}
+
 // At 30 degrees the flipped footbones reach the default vertex cap with 15 of their 3112 faces below the angle: a
 // refinement nearly done, not a cascade, which gets a second budget as large and leaves 4 (where every option is
 // refused). A cap that the caller gives is never extended.

@@ -19,7 +19,9 @@ struct RefineOptions {
     /// Then insert circumcentres until every corner angle is at least this, in degrees (0: none; at most 35).
     /// Corners at points of T whose cone angle is below three times this are exempt: a vertex of degree three or
     /// more there must have a smaller corner. Once every other corner is at least this, corners above 180 degrees
-    /// (patches that wrap around a bump of T) are cut in two, where that leaves every new corner at least this.
+    /// (patches that wrap around a bump of T) are cut in two, where that leaves every new corner at least this; where
+    /// refinement stops with corners below it (at the default vertex cap, or giving up), those above 180 degrees
+    /// are cut at last where every new corner is at least the smallest of the face cut.
     /// Where refinement gives up on some triangles without reaching the vertex cap, it starts again from the G
     /// given with nearly every vertex of T that is not flat treated as curved, and returns the better result.
     double min_angle_deg = 0.0;
