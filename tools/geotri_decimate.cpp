@@ -15,12 +15,15 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
+#include <limits>
 #include <string>
 
 namespace {
 
 namespace tools = geotri::tools;
+
+// Meshes are indexed by int.
+constexpr double k_most = std::numeric_limits<int>::max();
 
 struct Arguments {
     std::string input;
@@ -49,8 +52,10 @@ int run(tools::Tool& tool) {
         ->check(tools::extension_validator({".off", ".obj", ".ply"}, ".off, .obj or .ply"));
     // Exactly one target, checked by CLI11 while parsing.
     CLI::Option_group* target = app.add_option_group("Target", "Exactly one of these");
-    target->add_option("--faces", args.faces, "At most this many faces in all")->check(CLI::PositiveNumber);
-    target->add_option("--vertices", args.vertices, "At most this many vertices in all")->check(CLI::PositiveNumber);
+    target->add_option("--faces", args.faces, "At most this many faces in all")
+        ->check(tools::number_in(0, k_most, true));
+    target->add_option("--vertices", args.vertices, "At most this many vertices in all")
+        ->check(tools::number_in(0, k_most, true));
     target->add_option("--ratio", args.ratio, "At most this fraction of the input's faces, in (0, 1]")
         ->check(CLI::Validator(
             [](std::string& value) -> std::string {
@@ -66,12 +71,7 @@ int run(tools::Tool& tool) {
     app.add_option("--paths", args.paths,
                    "Also write what each coarse edge is on the input, for geotri-trace --paths (a text file)");
     tool.parse();
-    auto same_file = [](const std::string& a, const std::string& b) {
-        namespace fs = std::filesystem;
-        return fs::weakly_canonical(fs::absolute(a)) == fs::weakly_canonical(fs::absolute(b));
-    };
-    if (!args.paths.empty() && (same_file(args.paths, args.output) || same_file(args.paths, args.input)))
-        throw CLI::ValidationError("--paths must name another file than the input and the output");
+    tools::refuse_same_files({{"INPUT", args.input}}, {{"-o", args.output}, {"--paths", args.paths}});
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + args.input);
@@ -99,8 +99,13 @@ int run(tools::Tool& tool) {
 
     progress.stage("writing " + args.output);
     const double write_start = tools::now_seconds();
-    geotri::write_mesh(args.output, result.coarse);
-    if (!args.paths.empty()) geotri::write_edge_paths(args.paths, geotri::make_edge_paths(fine, result));
+    tools::StagedOutputs outputs;  // the coarse mesh and its paths, or neither
+    outputs.write(args.output, [&](const std::string& path) { geotri::write_mesh(path, result.coarse); });
+    if (!args.paths.empty())
+        outputs.write(args.paths, [&](const std::string& path) {
+            geotri::write_edge_paths(path, geotri::make_edge_paths(fine, result));
+        });
+    outputs.commit();
     const double write_seconds = tools::now_seconds() - write_start;
     progress.clear();
 

@@ -163,7 +163,7 @@ int run(tools::Tool& tool) {
         ->allow_extra_args(false)
         ->check(spec_validator());
     app.add_option("--max-distance", args.max_distance, "Compute nothing farther than this; farther is inf (default: no limit)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(tools::number_in(0, std::numeric_limits<double>::infinity()));
     app.add_option("-o,--output", args.output,
                    "Distances: .txt (one line per vertex, in load order) or .ply (the mesh with a distance property)")
         ->required()
@@ -175,6 +175,7 @@ int run(tools::Tool& tool) {
     path_to->needs(path_out);
     path_out->needs(path_to);
     tool.parse();
+    tools::refuse_same_files({{"MESH", args.mesh_path}}, {{"-o", args.output}, {"--path-out", args.path_out}});
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + args.mesh_path);
@@ -217,8 +218,10 @@ int run(tools::Tool& tool) {
     }
 
     progress.stage("writing " + args.output);
-    write_distances(args.output, mesh, distances);
-    if (target) write_path(args.path_out, mesh, path);
+    tools::StagedOutputs outputs;  // the distances and the path, or neither
+    outputs.write(args.output, [&](const std::string& file) { write_distances(file, mesh, distances); });
+    if (target) outputs.write(args.path_out, [&](const std::string& file) { write_path(file, mesh, path); });
+    outputs.commit();
     progress.clear();
 
     double max_finite = 0.0;

@@ -61,6 +61,7 @@ int run(tools::Tool& tool) {
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
         ->check(CLI::ExistingFile);
     tool.parse();
+    tools::refuse_same_files({{"IN", input}}, {{"-o", output}});  // a .gtri output is never the fine mesh
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + input);

@@ -52,6 +52,8 @@ int run(tools::Tool& tool) {
         ->check(tools::extension_validator({".vtp", ".vtk", ".obj"}));
     app.add_option("--fine", args.fine, "The fine mesh, instead of the path that IN holds")->check(CLI::ExistingFile);
     tool.parse();
+    tools::refuse_same_files({{"IN", args.input}, {"fine mesh", tools::fine_mesh_of(args.input, args.fine)}},
+                             {{"-o", args.output}, {"--curves", args.curves}});
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + args.input);
@@ -66,8 +68,11 @@ int run(tools::Tool& tool) {
 
     progress.stage("writing " + args.output);
     const double write_start = tools::now_seconds();
-    geotri::write_overlay(args.output, overlay);
-    if (!args.curves.empty()) geotri::write_curves(args.curves, g);
+    tools::StagedOutputs outputs;  // the overlay and the curves, or neither
+    outputs.write(args.output, [&](const std::string& path) { geotri::write_overlay(path, overlay); });
+    if (!args.curves.empty())
+        outputs.write(args.curves, [&](const std::string& path) { geotri::write_curves(path, g); });
+    outputs.commit();
     const double write_seconds = tools::now_seconds() - write_start;
     progress.clear();
 

@@ -16,6 +16,7 @@
 #include <geotri/refine.h>
 
 #include <cstdio>
+#include <limits>
 #include <string>
 
 namespace {
@@ -45,20 +46,20 @@ int run(tools::Tool& tool) {
         ->check(tools::extension_validator({".gtri"}));
     app.add_option("--max-length", options.max_length,
                    "Bisect until no edge is longer than this geodesic length (default: no bound)")
-        ->check(CLI::PositiveNumber);
+        ->check(tools::number_in(0, std::numeric_limits<double>::max(), true));
     app.add_option("--faces", options.target_faces, "Bisect until G has at least this many faces (default: none)")
-        ->check(CLI::PositiveNumber);
+        ->check(tools::number_in(0, std::numeric_limits<int>::max(), true));
     app.add_option("--min-angle", options.min_angle_deg,
                    "Then refine until every corner angle is at least this many degrees, at most 35 (default: none);\n"
                    "corners at points of T whose cone angle is below three times it are exempt. Then corners above\n"
                    "180 degrees are cut in two where every new corner stays at least this")
-        ->check(CLI::Range(0.0, 35.0));
+        ->check(tools::number_in(0, 35));
     app.add_option("--max-new-vertices", options.max_new_vertices,
                    "At most this many new vertices in each phase (default: none for bisection; for --min-angle,\n"
                    "four times the faces of G plus 100, doubled once when fewer than 5% of the faces are then below\n"
                    "the angle). On scanned surfaces whose every fine vertex is curved, refinement stops there while\n"
                    "the corners below the angle still fall: more leaves fewer")
-        ->check(CLI::PositiveNumber);
+        ->check(tools::number_in(0, std::numeric_limits<int>::max(), true));
     app.add_flag("--no-flip", no_flip, "Do not flip towards geodesic Delaunay around new vertices");
     bool keep_vertices = false;
     app.add_flag("--keep-vertices", keep_vertices,
@@ -67,6 +68,7 @@ int run(tools::Tool& tool) {
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
         ->check(CLI::ExistingFile);
     tool.parse();
+    tools::refuse_same_files({{"IN", input}}, {{"-o", output}});  // a .gtri output is never the fine mesh
     if (options.max_length == 0.0 && options.target_faces == 0 && options.min_angle_deg == 0.0)
         throw CLI::ValidationError("give at least one of --max-length, --faces and --min-angle");
     options.flip = !no_flip;

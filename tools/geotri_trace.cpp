@@ -54,6 +54,8 @@ int run(tools::Tool& tool) {
                    "better of the two is kept")
         ->check(CLI::ExistingFile);
     tool.parse();
+    tools::refuse_same_files({{"FINE", args.fine_path}, {"COARSE", args.coarse_path}, {"--paths", args.paths}},
+                             {{"-o", args.output}});
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + args.fine_path);

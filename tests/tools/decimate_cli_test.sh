@@ -63,6 +63,40 @@ usage_paths_same_as_output)
     expect_no_output
     ;;
 
+usage_output_is_the_input)
+    # By another path too: nothing the user gave is overwritten.
+    cp "$tripod" in_t.off
+    run in_t.off -o ./in_t.off --faces 20
+    expect_usage_error
+    grep -q "is the INPUT" stderr || fail "message does not say that -o is the input"
+    cmp -s in_t.off "$tripod" || fail "the input changed"
+    expect_no_output
+    ;;
+
+usage_bad_counts_say_what_is_wanted)
+    # Not CLI11's range up to the largest double, and no count beyond what an int index holds.
+    run "$tripod" -o out.off --faces 0
+    expect_usage_error
+    grep -q -- "--faces: 0 is not above 0" stderr || fail "the message does not say that --faces must be above 0"
+    run "$tripod" -o out.off --faces 18446744073709551616
+    expect_usage_error
+    grep -q "is above 2147483647" stderr || fail "the message does not give the largest count"
+    run "$tripod" -o out.off --faces 20 --threads 65536
+    expect_usage_error
+    grep -q -- "--threads: 65536 is above 1024" stderr || fail "the message does not give the most threads"
+    expect_no_output
+    ;;
+
+paths_that_cannot_be_written_leave_no_coarse_mesh)
+    # The coarse mesh and its paths appear together or not at all; an older coarse mesh stays.
+    echo "previous" >out.off
+    run "$tripod" -o out.off --faces 20 --paths no_such_folder/out.paths
+    expect_error_about no_such_folder/out.paths
+    [ "$(cat out.off)" = "previous" ] || fail "the coarse mesh was written without its paths"
+    rm out.off
+    expect_no_output
+    ;;
+
 edge_paths_are_written)
     # One line per coarse edge (3F/2 of them), each a path of fine vertices from its first coarse vertex's input
     # vertex to its second's.

@@ -107,6 +107,36 @@ usage_bad_threads)
     expect_usage_error
     ;;
 
+usage_nan_max_distance)
+    # A usage error, not a failure blamed on the mesh.
+    run "$bob" --source v:0 -o out.txt --max-distance nan
+    expect_usage_error
+    grep -q -- "--max-distance: 'nan' is not a number" stderr || fail "the message does not say what is wrong"
+    expect_no_output
+    ;;
+
+usage_outputs_are_the_mesh)
+    cp "$tripod" in_t.off
+    run in_t.off --source v:0 -o out.txt --path-to v:5 --path-out in_t.obj
+    expect_rc 0  # another file: a different extension
+    rm out.txt in_t.obj
+    cp "$bob" in_b.ply
+    run in_b.ply --source v:0 -o ./in_b.ply
+    expect_usage_error
+    grep -q "is the MESH" stderr || fail "message does not say that -o is the mesh"
+    cmp -s in_b.ply "$bob" || fail "the mesh changed"
+    expect_no_output
+    ;;
+
+path_that_cannot_be_written_leaves_no_distances)
+    echo "previous" >out.txt
+    run "$tripod" --source v:0 -o out.txt --path-to v:5 --path-out no_such_folder/path.obj
+    expect_error_about no_such_folder/path.obj
+    [ "$(cat out.txt)" = "previous" ] || fail "the distances were written without the path"
+    rm out.txt
+    expect_no_output
+    ;;
+
 usage_unknown_option)
     run "$bob" --source v:0 -o out.txt --frobnicate
     expect_usage_error

@@ -28,7 +28,7 @@ case "$case_name" in
 help_lists_every_option)
     run --help
     expect_rc 0
-    for option in IN --output --criterion --fine --json --quiet --threads --version --help; do
+    for option in IN --output --criterion --thorough --fine --json --quiet --threads --version --help; do
         grep -q -- "$option" stdout || fail "--help does not mention $option"
     done
     ;;
@@ -71,6 +71,16 @@ usage_missing_input_file)
     run in_nothing.gtri -o out.gtri
     expect_usage_error
     grep -q "in_nothing.gtri" stderr || fail "message does not name the file"
+    expect_no_output
+    ;;
+
+usage_output_is_the_input)
+    make_gtri "$tripod" --faces 20
+    cp in_g.gtri in_before.gtri
+    run in_g.gtri -o ./in_g.gtri
+    expect_usage_error
+    grep -q "is the IN" stderr || fail "message does not say that -o is the input"
+    cmp -s in_g.gtri in_before.gtri || fail "the input changed"
     expect_no_output
     ;;
 

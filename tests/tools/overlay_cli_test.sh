@@ -222,6 +222,32 @@ error_unwritable_output)
     expect_no_output
     ;;
 
+usage_output_is_the_fine_mesh_or_the_other_output)
+    # The fine mesh that the .gtri names is an input too, and it must stay whole: the .gtri holds its checksum.
+    write_cube_and_tetrahedron
+    "$decimate" in_cube.off -o in_cube.obj --ratio 1 --quiet || fail "geotri-decimate failed"
+    "$trace" in_cube.obj in_tet.off -o in_obj.gtri --quiet || fail "geotri-trace failed"
+    cp in_cube.obj in_cube_before.obj
+    run in_obj.gtri -o ./in_cube.obj
+    expect_usage_error
+    grep -q "is the fine mesh" stderr || fail "message does not say that -o is the fine mesh"
+    cmp -s in_cube.obj in_cube_before.obj || fail "the fine mesh changed"
+    run in_tet.gtri -o out.obj --curves out.obj
+    expect_usage_error
+    grep -q "name the same file" stderr || fail "message does not say that both outputs are one file"
+    expect_no_output
+    ;;
+
+curves_that_cannot_be_written_leave_no_overlay)
+    write_cube_and_tetrahedron
+    echo "previous" >out.vtu
+    run in_tet.gtri -o out.vtu --curves no_such_folder/out.vtp
+    expect_error_about no_such_folder/out.vtp
+    [ "$(cat out.vtu)" = "previous" ] || fail "the overlay was written without its curves"
+    rm out.vtu
+    expect_no_output
+    ;;
+
 failure_keeps_the_old_output)
     echo "previous" >out.vtu
     : >in_empty.gtri

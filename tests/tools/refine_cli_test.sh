@@ -52,6 +52,25 @@ usage_angle_out_of_range)
     expect_no_output
     ;;
 
+usage_nan_angle)
+    # A usage error, not a failure blamed on the input.
+    make_valid_gtri "$tripod" --faces 20
+    run in_g.gtri -o out.gtri --min-angle nan
+    expect_usage_error
+    grep -q -- "--min-angle: 'nan' is not a number" stderr || fail "the message does not say what is wrong"
+    expect_no_output
+    ;;
+
+usage_output_is_the_input)
+    make_valid_gtri "$tripod" --faces 20
+    cp in_g.gtri in_before.gtri
+    run in_g.gtri -o in_g.gtri --faces 40
+    expect_usage_error
+    grep -q "is the IN" stderr || fail "message does not say that -o is the input"
+    cmp -s in_g.gtri in_before.gtri || fail "the input changed"
+    expect_no_output
+    ;;
+
 usage_bad_output_extension)
     make_valid_gtri "$tripod" --faces 20
     run in_g.gtri -o out.off --faces 40

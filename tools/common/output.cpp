@@ -4,7 +4,14 @@
 #include "atomic_file.h"
 #include "mesh_io_detail.h"
 
+#include <geodesic/errors.h>
+
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 
 namespace geotri::tools {
 
@@ -39,6 +46,34 @@ void write_file_atomically(const std::string& path, const std::function<void(std
     detail::AtomicFile file(path);
     write(file.stream());
     file.commit();
+}
+
+StagedOutputs::~StagedOutputs() {
+    for (const auto& [temporary, path] : staged_) std::remove(temporary.c_str());
+}
+
+void StagedOutputs::write(const std::string& path, const std::function<void(const std::string&)>& write) {
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    const std::string temporary =
+        (target.parent_path() / ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) + "-" +
+                                 std::to_string(staged_.size()) + target.extension().string()))
+            .string();
+    staged_.emplace_back(temporary, path);
+    try {
+        write(temporary);
+    } catch (const IOError& error) {
+        std::string message = error.what();
+        for (std::size_t at = message.find(temporary); at != std::string::npos; at = message.find(temporary, at))
+            message.replace(at, temporary.size(), path);
+        throw IOError(message);
+    }
+}
+
+void StagedOutputs::commit() {
+    for (auto it = staged_.begin(); it != staged_.end(); it = staged_.erase(it))
+        if (std::rename(it->first.c_str(), it->second.c_str()) != 0)
+            throw IOError(it->second + ": cannot write (" + std::strerror(errno) + ")");
 }
 
 std::string extension_of(const std::string& path) { return detail::extension_of(path); }

@@ -16,6 +16,27 @@ namespace geotri::tools {
 /// Throws geotri::IOError("PATH: problem").
 void write_file_atomically(const std::string& path, const std::function<void(std::FILE*)>& write);
 
+/// A tool's outputs, which appear together or not at all: each is written under a temporary name in its own folder
+/// (with its extension, which chooses the format), and commit() renames them all once every one is written. If a
+/// write throws, or commit() is never reached, none appears, older files under those names stay, and the temporary
+/// files are removed.
+class StagedOutputs {
+public:
+    StagedOutputs() = default;
+    StagedOutputs(const StagedOutputs&) = delete;
+    StagedOutputs& operator=(const StagedOutputs&) = delete;
+    ~StagedOutputs();
+
+    /// Calls `write` with a temporary path for `path`. A geotri::IOError, which names the temporary path, is thrown
+    /// again with `path` in its place.
+    void write(const std::string& path, const std::function<void(const std::string&)>& write);
+    /// Renames every temporary file to its name. Throws geotri::IOError("PATH: problem").
+    void commit();
+
+private:
+    std::vector<std::pair<std::string, std::string>> staged_;  ///< (temporary path, path)
+};
+
 /// Lower-case extension of a path with its dot (".ply"), or empty.
 std::string extension_of(const std::string& path);
 

@@ -3,10 +3,15 @@
 #include "output.h"
 
 #include <geodesic/errors.h>
+#include <geotri/gtri_io.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <filesystem>
+#include <limits>
 #include <new>
 
 #ifdef _OPENMP
@@ -43,7 +48,7 @@ Tool::Tool(std::string program, int argc, char** argv)
     app.add_flag("-q,--quiet", common.quiet, "No progress and no summary on stderr");
     app.add_flag("--json", common.json, "Print a machine-readable summary on stdout");
     app.add_option("--threads", common.threads, "Number of threads (0: all cores)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(number_in(0, k_max_threads))
         ->capture_default_str();
 }
 
@@ -86,6 +91,49 @@ int run_tool(const std::string& name, int argc, char** argv, const std::function
         report(program, "unexpected failure");
     }
     return k_exit_failure;
+}
+
+CLI::Validator number_in(double lo, double hi, bool above_lo) {
+    return CLI::Validator(
+        [lo, hi, above_lo](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            if (text.empty() || end != text.c_str() + text.size() || std::isnan(value))
+                return "'" + text + "' is not a number";
+            if (above_lo && !(value > lo)) return text + " is not above " + format_double(lo);
+            if (value < lo) return text + " is below " + format_double(lo);
+            if (value > hi) return text + " is above " + format_double(hi);
+            return {};
+        },
+        // For --help: POSITIVE or NONNEGATIVE, as CLI11 says, where only the lower end matters.
+        lo == 0.0 && hi >= std::numeric_limits<int>::max()
+            ? (above_lo ? "POSITIVE" : "NONNEGATIVE")
+            : (above_lo ? "(" : "[") + format_double(lo) + ", " + format_double(hi) + "]");
+}
+
+void refuse_same_files(const std::vector<NamedFile>& inputs, const std::vector<NamedFile>& outputs) {
+    namespace fs = std::filesystem;
+    auto same = [](const std::string& a, const std::string& b) {
+        std::error_code error;
+        if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
+        return fs::weakly_canonical(fs::absolute(a), error) == fs::weakly_canonical(fs::absolute(b), error);
+    };
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const NamedFile& out = outputs[i];
+        if (out.path.empty()) continue;
+        for (const NamedFile& in : inputs)
+            if (!in.path.empty() && same(out.path, in.path))
+                throw CLI::ValidationError(out.option + " '" + out.path + "' is the " + in.option + " '" + in.path +
+                                           "': name another file, so that the input stays");
+        for (std::size_t j = 0; j < i; ++j)
+            if (!outputs[j].path.empty() && same(out.path, outputs[j].path))
+                throw CLI::ValidationError(out.option + " and " + outputs[j].option + " name the same file '" +
+                                           out.path + "'");
+    }
+}
+
+std::string fine_mesh_of(const std::string& gtri, const std::string& fine_override) {
+    return fine_override.empty() ? read_gtri_header(gtri).resolved_fine_path : fine_override;
 }
 
 CLI::Validator extension_validator(std::vector<std::string> extensions, std::string names) {

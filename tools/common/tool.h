@@ -56,6 +56,29 @@ private:
 /// `geotri-NAME: error: MESSAGE` on stderr. --help and --version print to stdout and return 0.
 int run_tool(const std::string& name, int argc, char** argv, const std::function<int(Tool&)>& body);
 
+/// The most threads that --threads takes: more than any machine's cores, and few enough for the OpenMP runtime to
+/// start them all (at 65536 it crashed).
+constexpr int k_max_threads = 1024;
+
+/// A CLI11 check that a value is a number in [lo, hi], or in (lo, hi] with `above_lo`, never NaN, that says plainly
+/// what is wrong ("0 is not above 0", "65536 is above 1024") rather than CLI11's range up to the largest double.
+CLI::Validator number_in(double lo, double hi, bool above_lo = false);
+
+/// A file that a tool reads or writes, named as on its command line: the option ("-o", "IN") and the path.
+struct NamedFile {
+    std::string option;
+    std::string path;
+};
+
+/// Throws CLI::ValidationError, a usage error, when an output is the same file as an input or as another output (by
+/// another path or through a link too): writing it would destroy what the tool reads, or one output the other.
+/// Entries with an empty path are skipped.
+void refuse_same_files(const std::vector<NamedFile>& inputs, const std::vector<NamedFile>& outputs);
+
+/// The fine mesh that a tool reading the .gtri file `gtri` uses: `fine_override` when given, else the one that the
+/// file names. Throws as read_gtri_header().
+std::string fine_mesh_of(const std::string& gtri, const std::string& fine_override);
+
 /// A CLI11 check that a path ends in one of `extensions` (lower case, with the dot), in any case. It refuses any
 /// other path with "'PATH' should end in NAMES": `names` if given, else the extensions joined by ", ".
 CLI::Validator extension_validator(std::vector<std::string> extensions, std::string names = {});
