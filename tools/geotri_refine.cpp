@@ -96,10 +96,16 @@ int run(tools::Tool& tool) {
     const double write_seconds = tools::now_seconds() - write_start;
     progress.clear();
 
+    // Bisection stops where every split that is left is refused (a new edge would be shorter than refinement's
+    // bound, or its patches too thin): the user must hear that the target was not reached.
+    const bool length_reached = options.max_length == 0.0 || r.longest_edge <= options.max_length;
+    const bool faces_reached =
+        options.target_faces == 0 || static_cast<int>(g.coarse().n_faces()) >= options.target_faces;
     if (tool.common.json) {
         tools::JsonSummary summary;
         summary.add("input", input);
         summary.add("output", output);
+        summary.add("bisection_target_reached", length_reached && faces_reached);
         summary.add("faces_before", faces_before);
         summary.add("vertices", g.coarse().n_vertices());
         summary.add("edges", g.coarse().n_edges());
@@ -136,6 +142,13 @@ int run(tools::Tool& tool) {
         std::fprintf(stderr, "%s: corner angles: min %.4g -> %.4g, mean %.4g -> %.4g degrees; longest edge %.6g\n",
                      program, r.angles_before.min_deg, r.angles_after.min_deg, r.angles_before.mean_deg,
                      r.angles_after.mean_deg, r.longest_edge);
+        if (!length_reached)
+            std::fprintf(stderr, "%s: --max-length %g not reached: the longest edge is %.6g, and every split left was "
+                                 "refused\n",
+                         program, options.max_length, r.longest_edge);
+        if (!faces_reached)
+            std::fprintf(stderr, "%s: --faces %d not reached: %zu faces, and every split left was refused\n", program,
+                         options.target_faces, g.coarse().n_faces());
         if (options.min_angle_deg > 0.0 && r.exempt_corners + r.small_corners_left > 0)
             std::fprintf(stderr, "%s: %d corners below %g degrees at cone points that force them, %d where refinement "
                                  "gave up\n",

@@ -94,6 +94,20 @@ max_length_is_reached)
     check out.gtri || fail "geotri-check finds out.gtri invalid"
     python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) <= 0.5 else 1)' "$(json_value longest_edge)" ||
         fail "longest edge $(json_value longest_edge) is above 0.5"
+    [ "$(json_value bisection_target_reached)" = true ] || fail "bisection_target_reached is not true"
+    ;;
+
+unreachable_bisection_target_is_said)
+    # No split may make an edge shorter than a tenth of T's mean edge: the bound stops bisection, which says so.
+    make_valid_gtri "$tripod" --faces 20
+    run in_g.gtri -o out.gtri --max-length 1e-12 --json
+    expect_rc 0
+    [ "$(json_value bisection_target_reached)" = false ] || fail "bisection_target_reached is not false"
+    run in_g.gtri -o out.gtri --max-length 1e-12
+    expect_rc 0
+    grep -q -- "--max-length 1e-12 not reached: the longest edge is" stderr || fail "stderr does not say so"
+    run in_g.gtri -o out.gtri --faces 100000000
+    grep -q -- "--faces 100000000 not reached" stderr || fail "stderr does not say that --faces was not reached"
     ;;
 
 min_angle_is_reached)
