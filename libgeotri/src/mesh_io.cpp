@@ -24,6 +24,8 @@ std::string read_file(const std::string& path) {
     struct stat info {};
     if (::fstat(::fileno(file.get()), &info) != 0) fail(path, std::string("cannot read: ") + std::strerror(errno));
     if (S_ISDIR(info.st_mode)) fail(path, "cannot read: it is a folder");
+    // A device (/dev/zero, a terminal) may never end, and would fill memory; pipes are read as files.
+    if (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode)) fail(path, "cannot read: it is a device, not a file");
     std::string bytes;
     if (S_ISREG(info.st_mode)) bytes.reserve(static_cast<std::size_t>(info.st_size));
     // Read until the end rather than trusting the size: the file may be a pipe, or change under us.
@@ -92,7 +94,11 @@ MeshData read_mesh(const std::string& path) {
     }
     const std::string bytes = detail::read_file(path);
     if (bytes.empty()) detail::fail(path, "empty file");
-    MeshData mesh = reader(path, bytes);
+    std::string_view text = bytes;
+    // A UTF-8 byte order mark, which some editors put first, is not part of the text formats' first line. (A binary
+    // STL's 80-byte header may start with those bytes; an ASCII STL with one is rare enough to leave.)
+    if (ext != ".stl" && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+    MeshData mesh = reader(path, text);
     detail::check_mesh(path, mesh);
     return mesh;
 }

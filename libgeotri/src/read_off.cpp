@@ -96,6 +96,10 @@ MeshData read_off(const std::string& path, std::string_view bytes) {
             v = static_cast<int>(index);
         }
     }
+    // More data than the header announces is a wrong count, whose faces would be left out in silence.
+    if (next_content_line())
+        fail(path, "line " + std::to_string(lines.line_number()) + " follows the " + std::to_string(num_faces) +
+                       " faces that the header announces (is its face count wrong?)");
     return mesh;
 }
 

@@ -285,6 +285,27 @@ TEST_F(MeshIO, off_broken_inputs) {
     expect_read_error(write_bytes("letters.off", "OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n"), "malformed line 4");
     expect_read_error(write_bytes("nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"), "no faces");
     expect_read_error(write_bytes("huge.off", "OFF\n3000000000 1 0\n0 0 0\n"), "truncated");
+    // A face count one short would drop a face in silence.
+    expect_read_error(write_bytes("short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n"),
+                      "line 7 follows the 1 faces that the header announces");
+    expect_read_error(write_bytes("junk.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\ngarbage 1 2 3\n"),
+                      "line 7 follows");
+}
+
+TEST_F(MeshIO, a_utf8_byte_order_mark_is_skipped_in_text_formats) {
+    const std::string bom = "\xEF\xBB\xBF";
+    const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n# trailing comment\n";
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                            "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    for (const auto& [name, text] : {std::pair{"t.off", off}, std::pair{"t.obj", obj}, std::pair{"t.ply", ply}}) {
+        const MeshData plain = geotri::read_mesh(write_bytes(std::string("plain_") + name, text));
+        const MeshData marked = geotri::read_mesh(write_bytes(std::string("bom_") + name, bom + text));
+        EXPECT_EQ(marked.positions, plain.positions) << name;
+        EXPECT_EQ(marked.triangles, plain.triangles) << name;
+        EXPECT_EQ(plain.positions.size(), 3u) << name;
+    }
 }
 
 // ---- OBJ ------------------------------------------------------------------------------------------------------
@@ -526,6 +547,10 @@ TEST_F(MeshIO, unknown_extension_and_missing_file) {
     expect_read_error(dir_.string() + "/", "unknown mesh format");
     fs::create_directories(dir_ / "folder.off");
     expect_read_error(path("folder.off"), "folder");
+    // A device never ends: it is refused, not read until memory runs out.
+    const fs::path zero = dir_ / "zero.stl";
+    fs::create_symlink("/dev/zero", zero);
+    expect_read_error(zero.string(), "it is a device, not a file");
 }
 
 // ---- Real meshes ----------------------------------------------------------------------------------------------
