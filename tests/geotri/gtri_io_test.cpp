@@ -480,6 +480,17 @@ TEST_F(GtriIO, fine_path_with_a_leading_space_round_trips) {
     EXPECT_TRUE(fs::equivalent(back.fine().path, spaced));
 }
 
+TEST_F(GtriIO, a_device_is_refused_not_read_until_memory_runs_out) {
+    const fs::path zero = dir_ / "zero.gtri";
+    fs::create_symlink("/dev/zero", zero);
+    try {
+        geotri::read_gtri(zero.string());
+        ADD_FAILURE() << "no error";
+    } catch (const geotri::IOError& e) {
+        EXPECT_EQ(std::string(e.what()), zero.string() + ": cannot read: it is a device, not a file");
+    }
+}
+
 TEST_F(GtriIO, fine_path_that_is_a_folder_names_the_gtri_file) {
     const std::string path = (dir_ / "out" / "g.gtri").string();
     geotri::write_gtri(path, traced());
