@@ -14,7 +14,6 @@
 #include <geotri/mesh_io.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -53,16 +52,11 @@ int run(tools::Tool& tool) {
     // Exactly one target, checked by CLI11 while parsing.
     CLI::Option_group* target = app.add_option_group("Target", "Exactly one of these");
     target->add_option("--faces", args.faces, "At most this many faces in all")
-        ->check(tools::number_in(0, k_most, true));
+        ->check(tools::number_in(0, k_most, true, true));
     target->add_option("--vertices", args.vertices, "At most this many vertices in all")
-        ->check(tools::number_in(0, k_most, true));
+        ->check(tools::number_in(0, k_most, true, true));
     target->add_option("--ratio", args.ratio, "At most this fraction of the input's faces, in (0, 1]")
-        ->check(CLI::Validator(
-            [](std::string& value) -> std::string {
-                const double r = std::strtod(value.c_str(), nullptr);
-                return r > 0.0 && r <= 1.0 ? std::string() : "--ratio must be in (0, 1], not " + value;
-            },
-            "(0, 1]"));
+        ->check(tools::number_in(0, 1, true));
     target->add_flag("--coarsest", args.coarsest, "As coarse as each component's topology allows (a sphere: 4 faces)");
     target->require_option(1);
     app.add_option("--strategy", args.strategy,

@@ -48,7 +48,7 @@ int run(tools::Tool& tool) {
                    "Bisect until no edge is longer than this geodesic length (default: no bound)")
         ->check(tools::number_in(0, std::numeric_limits<double>::max(), true));
     app.add_option("--faces", options.target_faces, "Bisect until G has at least this many faces (default: none)")
-        ->check(tools::number_in(0, std::numeric_limits<int>::max(), true));
+        ->check(tools::number_in(0, std::numeric_limits<int>::max(), true, true));
     app.add_option("--min-angle", options.min_angle_deg,
                    "Then refine until every corner angle is at least this many degrees, at most 35 (default: none);\n"
                    "corners at points of T whose cone angle is below three times it are exempt. Then corners above\n"
@@ -58,8 +58,9 @@ int run(tools::Tool& tool) {
                    "At most this many new vertices in each phase (default: none for bisection; for --min-angle,\n"
                    "four times the faces of G plus 100, doubled once when fewer than 5% of the faces are then below\n"
                    "the angle). On scanned surfaces whose every fine vertex is curved, refinement stops there while\n"
-                   "the corners below the angle still fall: more leaves fewer")
-        ->check(tools::number_in(0, std::numeric_limits<int>::max(), true));
+                   "the corners below the angle still fall: more leaves fewer. Past the default cap, the corners\n"
+                   "above 180 degrees left are still cut; a cap given is never passed")
+        ->check(tools::number_in(0, std::numeric_limits<int>::max(), true, true));
     app.add_flag("--no-flip", no_flip, "Do not flip towards geodesic Delaunay around new vertices");
     bool keep_vertices = false;
     app.add_flag("--keep-vertices", keep_vertices,

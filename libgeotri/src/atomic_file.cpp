@@ -15,16 +15,16 @@ namespace {
 
 constexpr std::size_t k_buffer_size = 1 << 20;
 
-std::string temporary_name_for(const std::string& path) {
+}  // namespace
+
+std::string temporary_name_for(const std::string& path, const std::string& extension) {
     static std::atomic<unsigned> counter{0};
     const std::size_t slash = path.find_last_of('/');
     const std::string folder = slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
     const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
     // Hidden, and unique within this process and among processes.
-    return folder + "." + name + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    return folder + "." + name + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + extension;
 }
-
-}  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), temp_path_(temporary_name_for(path_)) {
     // "x": never reuse an existing file under the temporary name.

@@ -9,6 +9,9 @@
 
 namespace geotri::detail {
 
+/// A hidden name in the folder of `path`, unique within this process and among processes, ending in `extension`.
+std::string temporary_name_for(const std::string& path, const std::string& extension = "");
+
 /// Writes to a temporary file in the target's folder and renames it over the target on commit(). If commit() is
 /// never reached (an exception, an early return), the destructor removes the temporary file, so that no partial
 /// output is ever left under either name. Writes are buffered. Every failure throws IOError("PATH: problem").

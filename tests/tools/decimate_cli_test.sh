@@ -84,6 +84,9 @@ usage_bad_counts_say_what_is_wanted)
     run "$tripod" -o out.off --faces 20 --threads 65536
     expect_usage_error
     grep -q -- "--threads: 65536 is above 1024" stderr || fail "the message does not give the most threads"
+    run "$tripod" -o out.off --faces 4.5
+    expect_usage_error
+    grep -q -- "--faces: '4.5' is not a whole number" stderr || fail "the message does not say that --faces is whole"
     expect_no_output
     ;;
 
@@ -93,6 +96,12 @@ paths_that_cannot_be_written_leave_no_coarse_mesh)
     run "$tripod" -o out.off --faces 20 --paths no_such_folder/out.paths
     expect_error_about no_such_folder/out.paths
     [ "$(cat out.off)" = "previous" ] || fail "the coarse mesh was written without its paths"
+    # A folder fails only where it is renamed to, after the coarse mesh: it is refused first.
+    mkdir in_folder
+    run "$tripod" -o out.off --faces 20 --paths in_folder
+    expect_error_about in_folder
+    [ "$(cat out.off)" = "previous" ] || fail "the coarse mesh was written without its paths (a folder)"
+    [ -z "$(ls -A in_folder)" ] || fail "something was written into the folder"
     rm out.off
     expect_no_output
     ;;

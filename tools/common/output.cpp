@@ -6,8 +6,6 @@
 
 #include <geodesic/errors.h>
 
-#include <unistd.h>
-
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -52,18 +50,18 @@ StagedOutputs::~StagedOutputs() {
     for (const auto& [temporary, path] : staged_) std::remove(temporary.c_str());
 }
 
-void StagedOutputs::write(const std::string& path, const std::function<void(const std::string&)>& write) {
-    namespace fs = std::filesystem;
-    const fs::path target(path);
-    const std::string temporary =
-        (target.parent_path() / ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) + "-" +
-                                 std::to_string(staged_.size()) + target.extension().string()))
-            .string();
+void StagedOutputs::write(const std::string& path, const std::function<void(const std::string&)>& writer) {
+    // The renames of commit() come one after another: what would make one fail is refused before anything is written.
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error) || (!path.empty() && path.back() == '/'))
+        throw IOError(path + ": cannot write: it is a folder");
+    // The extension stays last: it chooses the format.
+    const std::string temporary = detail::temporary_name_for(path, extension_of(path));
     staged_.emplace_back(temporary, path);
     try {
-        write(temporary);
-    } catch (const IOError& error) {
-        std::string message = error.what();
+        writer(temporary);
+    } catch (const Error& failure) {
+        std::string message = failure.what();
         for (std::size_t at = message.find(temporary); at != std::string::npos; at = message.find(temporary, at))
             message.replace(at, temporary.size(), path);
         throw IOError(message);
@@ -73,7 +71,7 @@ void StagedOutputs::write(const std::string& path, const std::function<void(cons
 void StagedOutputs::commit() {
     for (auto it = staged_.begin(); it != staged_.end(); it = staged_.erase(it))
         if (std::rename(it->first.c_str(), it->second.c_str()) != 0)
-            throw IOError(it->second + ": cannot write (" + std::strerror(errno) + ")");
+            throw IOError(it->second + ": cannot write: " + std::strerror(errno));
 }
 
 std::string extension_of(const std::string& path) { return detail::extension_of(path); }

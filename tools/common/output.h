@@ -19,7 +19,8 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 /// A tool's outputs, which appear together or not at all: each is written under a temporary name in its own folder
 /// (with its extension, which chooses the format), and commit() renames them all once every one is written. If a
 /// write throws, or commit() is never reached, none appears, older files under those names stay, and the temporary
-/// files are removed.
+/// files are removed. An output that names a folder is refused before anything is written, since its rename would
+/// fail after the others'.
 class StagedOutputs {
 public:
     StagedOutputs() = default;
@@ -27,9 +28,9 @@ public:
     StagedOutputs& operator=(const StagedOutputs&) = delete;
     ~StagedOutputs();
 
-    /// Calls `write` with a temporary path for `path`. A geotri::IOError, which names the temporary path, is thrown
-    /// again with `path` in its place.
-    void write(const std::string& path, const std::function<void(const std::string&)>& write);
+    /// Calls `writer` with a temporary path for `path`. Its geotri::Error, which names the temporary path, is thrown
+    /// again as an IOError with `path` in its place.
+    void write(const std::string& path, const std::function<void(const std::string&)>& writer);
     /// Renames every temporary file to its name. Throws geotri::IOError("PATH: problem").
     void commit();
 

@@ -48,7 +48,7 @@ Tool::Tool(std::string program, int argc, char** argv)
     app.add_flag("-q,--quiet", common.quiet, "No progress and no summary on stderr");
     app.add_flag("--json", common.json, "Print a machine-readable summary on stdout");
     app.add_option("--threads", common.threads, "Number of threads (0: all cores)")
-        ->check(number_in(0, k_max_threads))
+        ->check(number_in(0, k_max_threads, false, true))
         ->capture_default_str();
 }
 
@@ -93,13 +93,14 @@ int run_tool(const std::string& name, int argc, char** argv, const std::function
     return k_exit_failure;
 }
 
-CLI::Validator number_in(double lo, double hi, bool above_lo) {
+CLI::Validator number_in(double lo, double hi, bool above_lo, bool whole) {
     return CLI::Validator(
-        [lo, hi, above_lo](std::string& text) -> std::string {
+        [lo, hi, above_lo, whole](std::string& text) -> std::string {
             char* end = nullptr;
-            const double value = std::strtod(text.c_str(), &end);
+            const double value = whole ? static_cast<double>(std::strtoll(text.c_str(), &end, 10))
+                                       : std::strtod(text.c_str(), &end);
             if (text.empty() || end != text.c_str() + text.size() || std::isnan(value))
-                return "'" + text + "' is not a number";
+                return "'" + text + "' is not " + (whole ? "a whole number" : "a number");
             if (above_lo && !(value > lo)) return text + " is not above " + format_double(lo);
             if (value < lo) return text + " is below " + format_double(lo);
             if (value > hi) return text + " is above " + format_double(hi);
@@ -113,10 +114,16 @@ CLI::Validator number_in(double lo, double hi, bool above_lo) {
 
 void refuse_same_files(const std::vector<NamedFile>& inputs, const std::vector<NamedFile>& outputs) {
     namespace fs = std::filesystem;
-    auto same = [](const std::string& a, const std::string& b) {
+    // Links resolved where the path can be; where it cannot (a folder that is not there), its plain form.
+    auto resolved = [](const std::string& path) {
+        std::error_code error;
+        const fs::path canonical = fs::weakly_canonical(fs::absolute(path), error);
+        return error ? fs::absolute(path).lexically_normal() : canonical;
+    };
+    auto same = [&](const std::string& a, const std::string& b) {
         std::error_code error;
         if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
-        return fs::weakly_canonical(fs::absolute(a), error) == fs::weakly_canonical(fs::absolute(b), error);
+        return resolved(a) == resolved(b);
     };
     for (std::size_t i = 0; i < outputs.size(); ++i) {
         const NamedFile& out = outputs[i];

@@ -60,9 +60,10 @@ int run_tool(const std::string& name, int argc, char** argv, const std::function
 /// start them all (at 65536 it crashed).
 constexpr int k_max_threads = 1024;
 
-/// A CLI11 check that a value is a number in [lo, hi], or in (lo, hi] with `above_lo`, never NaN, that says plainly
-/// what is wrong ("0 is not above 0", "65536 is above 1024") rather than CLI11's range up to the largest double.
-CLI::Validator number_in(double lo, double hi, bool above_lo = false);
+/// A CLI11 check that a value is a number in [lo, hi], or in (lo, hi] with `above_lo`, never NaN, and a whole number
+/// in decimals with `whole` (for integer options), that says plainly what is wrong ("0 is not above 0", "65536 is
+/// above 1024", "'4.5' is not a whole number") rather than CLI11's range up to the largest double.
+CLI::Validator number_in(double lo, double hi, bool above_lo = false, bool whole = false);
 
 /// A file that a tool reads or writes, named as on its command line: the option ("-o", "IN") and the path.
 struct NamedFile {
