@@ -376,7 +376,7 @@ private:
         std::set<std::array<int, 3>> tried;
         // Cutting a corner can widen another through the flips that follow: a bound on the tries, not only the set.
         for (int tries = 0; tries < 2 * wide; ++tries) {
-            if (options_.max_new_vertices > 0 && new_vertices_ >= budget_) return;
+            if (options_.max_new_vertices > 0 && cap_reached()) return;
             FaceHandle widest;
             CornerRange widest_range;
             for (FaceHandle f : g_.coarse().faces()) {

@@ -220,8 +220,8 @@ TEST(Refine, corners_above_180_degrees_left_at_the_vertex_cap_are_cut_at_last) {
     EXPECT_GT(given.wide_corners_left, 0) << "the test needs such corners";
     EXPECT_LT(r.wide_corners_left, given.wide_corners_left);
     EXPECT_GT(g.coarse().n_faces(), to_the_letter.coarse().n_faces());
-    // No triangle comes out worse than the one it cuts: the smallest corner stays, and no corner is added below the
-    // angle.
+    // No triangle comes out worse than the one it cuts, so the smallest corner stays (and here, as on the other meshes
+    // of the sweep, the corners below the angle do not grow in number).
     EXPECT_EQ(r.angles_after.min_deg, given.angles_after.min_deg);
     EXPECT_LE(r.small_corners_left, given.small_corners_left);
     expect_valid_with_area(g);

@@ -42,7 +42,8 @@ struct RefineOptions {
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
     /// where angle refinement cascades instead of converging (it does on some curved meshes at 25-30 degrees), it
-    /// stops there and says so.
+    /// stops there and says so. Past the default cap, the corners above 180 degrees left are still cut (see
+    /// min_angle_deg); a cap given here is never passed.
     int max_new_vertices = 0;
     /// Called now and then with a line saying where refinement is.
     std::function<void(const std::string&)> progress;
