@@ -42,9 +42,6 @@ std::string shortest(double value) {
     return text;
 }
 
-// Below this, every length, area and the geodesic arithmetic stay finite: a face's area squares its squared edge
-// lengths (overflow from about 1e77), and nothing else raises a coordinate to a higher power.
-constexpr double k_max_coordinate = 1e75;
 
 }  // namespace
 

@@ -68,7 +68,7 @@ MeshData read_obj(const std::string& path, std::string_view bytes) {
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
         for (const int v : mesh.triangles[f]) {
             if (v >= num_vertices) {
-                fail(path, "face " + std::to_string(f) + " refers to vertex " + std::to_string(v + 1) +
+                fail(path, "face " + std::to_string(f) + " refers to vertex " + std::to_string(v + 1LL) +
                                ", out of range (" + std::to_string(num_vertices) + " vertices; line " +
                                std::to_string(face_lines[f]) + ")");
             }

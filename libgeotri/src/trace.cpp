@@ -283,6 +283,10 @@ CoarseMesh make_coarse_mesh(const MeshData& data, const std::string& name) {
     const std::string prefix = name.empty() ? std::string() : name + ": ";
     const int n = static_cast<int>(data.positions.size());
     if (data.triangles.empty()) throw TopologyError(prefix + "coarse mesh has no faces");
+    for (int v = 0; v < n; ++v)
+        if (data.positions[static_cast<std::size_t>(v)].cwiseAbs().maxCoeff() > k_max_coordinate)
+            throw InvalidInput(prefix + "coarse vertex " + std::to_string(v) + " has a coordinate beyond +-1e+75 "
+                                        "(areas would overflow)");
     std::unordered_map<std::uint64_t, int> face_of_halfedge;
     face_of_halfedge.reserve(3 * data.triangles.size());
     for (std::size_t f = 0; f < data.triangles.size(); ++f) {

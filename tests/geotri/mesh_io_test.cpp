@@ -292,6 +292,12 @@ TEST_F(MeshIO, off_broken_inputs) {
                       "line 7 follows");
 }
 
+TEST_F(MeshIO, obj_index_at_the_end_of_int_is_named_as_written) {
+    // 2147483648 is the last index that fits an int once made 0-based: its message must not wrap around.
+    expect_read_error(write_bytes("big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2147483648\n"),
+                      "face 0 refers to vertex 2147483648, out of range (3 vertices; line 4)");
+}
+
 TEST_F(MeshIO, a_utf8_byte_order_mark_is_skipped_in_text_formats) {
     const std::string bom = "\xEF\xBB\xBF";
     const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n# trailing comment\n";

@@ -224,6 +224,15 @@ error_nan_coarse)
     expect_no_output
     ;;
 
+error_huge_coarse_coordinate)
+    # Read exactly, but beyond what the geometry can square: refused, naming the coarse mesh.
+    off_edit 'k == 3 { $1 = "1e300" }' "$tripod" >in_huge.off
+    run "$tripod" in_huge.off -o out.gtri
+    expect_error_about in_huge.off
+    grep -q "beyond" stderr || fail "the message does not say what is wrong"
+    expect_no_output
+    ;;
+
 error_index_out_of_range)
     off_edit 'k == 2 + nv + nf { $4 = 99 }' "$tripod" >in_index.off
     run "$tripod" in_index.off -o out.gtri

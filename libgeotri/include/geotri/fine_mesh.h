@@ -22,6 +22,11 @@ struct FineMesh {
     std::vector<int> genus;          ///< per component: V - F/2 = 2 - 2 genus, since T is closed (E = 3F/2)
 };
 
+/// The largest coordinate (in absolute value) that a fine or coarse mesh may have: below it every length, area and
+/// the geodesic arithmetic stay finite (a face's area squares its squared edge lengths, which overflows from about
+/// 1e77). The readers read any finite value exactly; this bound is the geometry's.
+constexpr double k_max_coordinate = 1e75;
+
 /// Reads `path` exactly (read_mesh) and checks it (make_fine_mesh). Throws IOError for a file problem,
 /// TopologyError for a mesh that is not closed, manifold and oriented, and InvalidInput for bad numbers (a
 /// coordinate that is not finite or beyond 1e75, a mesh or component of zero area; faces of zero area are allowed);
