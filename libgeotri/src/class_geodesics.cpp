@@ -57,6 +57,10 @@ std::vector<std::vector<int>> reference_paths(const GeodesicTriangulation& g, co
                       " edges, not " + std::to_string(coarse.n_vertices()) + " and " +
                       std::to_string(coarse.n_edges()) + ")");
 
+    // The coarse vertex on each fine vertex: an edge's path may pass through no other.
+    std::vector<int> coarse_on(static_cast<std::size_t>(fine.mesh.num_vertices()), -1);
+    for (const auto v : coarse.vertices()) coarse_on[static_cast<std::size_t>(fine_vertex_of(g, paths, v))] = v.idx();
+
     // Per edge, in edge order: the path of fine vertices along its first halfedge.
     std::vector<std::vector<int>> reference(coarse.n_edges());
     for (const auto e : coarse.edges()) {
@@ -75,6 +79,12 @@ std::vector<std::vector<int>> reference_paths(const GeodesicTriangulation& g, co
             path.back() != fine_vertex_of(g, paths, coarse.vertex_handle(static_cast<unsigned>(to))))
             throw IOError(name + ": the path of coarse edge (" + std::to_string(key.a) + ", " + std::to_string(key.b) +
                           ") does not join the fine vertices of its ends");
+        for (std::size_t i = 1; i + 1 < path.size(); ++i)
+            if (coarse_on[static_cast<std::size_t>(path[i])] >= 0)
+                throw IOError(name + ": the path of coarse edge (" + std::to_string(key.a) + ", " +
+                              std::to_string(key.b) + ") passes through coarse vertex " +
+                              std::to_string(coarse_on[static_cast<std::size_t>(path[i])]) + " (fine vertex " +
+                              std::to_string(path[i]) + ")");
         for (std::size_t i = 0; i + 1 < path.size(); ++i)
             if (fine.mesh.find_halfedge(path[i], path[i + 1]) < 0 && fine.mesh.find_halfedge(path[i + 1], path[i]) < 0)
                 throw IOError(name + ": the path of coarse edge (" + std::to_string(key.a) + ", " +

@@ -288,6 +288,24 @@ error_edge_paths_of_another_mesh)
     [ -z "$(ls -A out)" ] || fail "files left in out/: $(ls -A out)"
     ;;
 
+error_edge_path_through_a_coarse_vertex)
+    # The path of the first face's first edge (i, j) detours through the face's third corner k, a coarse vertex.
+    trace_tripod
+    write_trivial_paths "$(sed -n 's/^fine_checksum //p' out/g.gtri)" in_trivial.paths
+    read -r i j k <<<"$(awk 'NF == 0 { next } { n++ } n == 2 { nv = $1 } n == 3 + nv { print $2, $3, $4; exit }' \
+                           "$tripod")"
+    a=$((i < j ? i : j)) b=$((i < j ? j : i))
+    awk -v a="$a" -v b="$b" -v k="$k" '$1 == a && $2 == b && NF == 5 { print a, b, 3, a, k, b; next } { print }' \
+        in_trivial.paths >in_tripod.paths
+    rm -f out/g.gtri
+    run in_meshes/tripod.off in_meshes/tripod.off --paths in_tripod.paths -o out/g.gtri
+    expect_error_about in_tripod.paths
+    grep -q "the path of coarse edge ($a, $b) passes through coarse vertex $k" stderr ||
+        fail "message does not name the edge and the coarse vertex"
+    grep -q straighten stderr && fail "the message names an internal function"
+    [ -z "$(ls -A out)" ] || fail "files left in out/: $(ls -A out)"
+    ;;
+
 error_truncated_edge_paths)
     trace_tripod
     write_trivial_paths "$(sed -n 's/^fine_checksum //p' out/g.gtri)" in_full.paths
