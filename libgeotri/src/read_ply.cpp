@@ -278,6 +278,8 @@ public:
     }
 
     std::size_t remaining() const { return rest_.size(); }
+    /// Whether anything but white space follows the last element: a count in the header that is too small.
+    bool data_left() const { return rest_.find_first_not_of(" \t\r\n") != std::string_view::npos; }
 
     [[noreturn]] void truncated() const {
         fail(path_, "truncated: the data ends in element '" + element_->name + "' " + std::to_string(item_) + " of " +
@@ -421,7 +423,10 @@ MeshData read_ply(const std::string& path, std::string_view bytes) {
         int header_lines = 0;
         for (std::size_t i = 0; i < header.data_offset; ++i) header_lines += bytes[i] == '\n';
         AsciiCursor in(path, data, header_lines + 1);
-        return read_elements(path, header, in);
+        MeshData mesh = read_elements(path, header, in);
+        // (A binary file's extra bytes are left alone: some writers pad.)
+        if (in.data_left()) fail(path, "data follows the elements that the header announces (is a count wrong?)");
+        return mesh;
     }
     const bool little = header.format == Format::binary_little_endian;
     BinaryCursor in(path, data, little != host_is_little_endian());

@@ -507,6 +507,10 @@ TEST_F(MeshIO, ply_broken_inputs) {
     expect_read_error(write_bytes("cut_vertices.ply", good.substr(0, data + 30)), "truncated");
     expect_read_error(write_bytes("cut_faces.ply", good.substr(0, data + 4 * 22 + 10)), "truncated");
     expect_read_error(write_bytes("cut_tail.ply", good.substr(0, good.size() - 1)), "truncated");
+    // An ASCII file with more than its header announces (a face count one short would drop a face in silence).
+    const std::string ascii = make_ply({"ascii", "float", "uchar", "int"}, k_integer_points, k_tetrahedron_faces);
+    expect_read_error(write_bytes("extra.ply", ascii + "3 0 1 2\n"), "data follows the elements");
+    EXPECT_NO_THROW(geotri::read_mesh(write_bytes("blank_tail.ply", ascii + "\n  \r\n")));
     expect_read_error(write_bytes("not.ply", "PLY\n"), "not a PLY file");
     expect_read_error(write_bytes("format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"), "unknown format");
     expect_read_error(write_bytes("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n"),
