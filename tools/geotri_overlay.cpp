@@ -52,14 +52,15 @@ int run(tools::Tool& tool) {
         ->check(tools::extension_validator({".vtp", ".vtk", ".obj"}));
     app.add_option("--fine", args.fine, "The fine mesh, instead of the path that IN holds")->check(CLI::ExistingFile);
     tool.parse();
-    tools::refuse_same_files({{"IN", args.input}, {"fine mesh", tools::fine_mesh_of(args.input, args.fine)}},
-                             {{"-o", args.output}, {"--curves", args.curves}});
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + args.input);
     const double load_start = tools::now_seconds();
     const geotri::GeodesicTriangulation g = geotri::read_gtri(args.input, args.fine);
     const double load_seconds = tools::now_seconds() - load_start;
+    // The fine mesh is known once G is loaded, and an output must not replace it either.
+    tools::refuse_same_files({{"IN", args.input}, {"fine mesh", g.fine().path}},
+                             {{"-o", args.output}, {"--curves", args.curves}});
 
     progress.stage("cutting");
     const double cut_start = tools::now_seconds();

@@ -42,7 +42,6 @@ std::string shortest(double value) {
     return text;
 }
 
-
 }  // namespace
 
 std::uint64_t fine_mesh_checksum(const std::vector<Eigen::Vector3d>& positions,

@@ -3,7 +3,6 @@
 #include "output.h"
 
 #include <geodesic/errors.h>
-#include <geotri/gtri_io.h>
 
 #include <chrono>
 #include <cmath>
@@ -137,10 +136,6 @@ void refuse_same_files(const std::vector<NamedFile>& inputs, const std::vector<N
                 throw CLI::ValidationError(out.option + " and " + outputs[j].option + " name the same file '" +
                                            out.path + "'");
     }
-}
-
-std::string fine_mesh_of(const std::string& gtri, const std::string& fine_override) {
-    return fine_override.empty() ? read_gtri_header(gtri).resolved_fine_path : fine_override;
 }
 
 CLI::Validator extension_validator(std::vector<std::string> extensions, std::string names) {

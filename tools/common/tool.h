@@ -76,10 +76,6 @@ struct NamedFile {
 /// Entries with an empty path are skipped.
 void refuse_same_files(const std::vector<NamedFile>& inputs, const std::vector<NamedFile>& outputs);
 
-/// The fine mesh that a tool reading the .gtri file `gtri` uses: `fine_override` when given, else the one that the
-/// file names. Throws as read_gtri_header().
-std::string fine_mesh_of(const std::string& gtri, const std::string& fine_override);
-
 /// A CLI11 check that a path ends in one of `extensions` (lower case, with the dot), in any case. It refuses any
 /// other path with "'PATH' should end in NAMES": `names` if given, else the extensions joined by ", ".
 CLI::Validator extension_validator(std::vector<std::string> extensions, std::string names = {});
