@@ -96,7 +96,7 @@ MeshData read_mesh(const std::string& path) {
     if (bytes.empty()) detail::fail(path, "empty file");
     std::string_view text = bytes;
     // A UTF-8 byte order mark, which some editors put first, is not part of the text formats' first line. (A binary
-    // STL's 80-byte header may start with those bytes; an ASCII STL with one is rare enough to leave.)
+    // STL's 80-byte header may start with those bytes: read_stl() skips one only where the file is not binary.)
     if (ext != ".stl" && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
     MeshData mesh = reader(path, text);
     detail::check_mesh(path, mesh);

@@ -188,7 +188,11 @@ MeshData read_stl(const std::string& path, std::string_view bytes) {
             return read_binary_stl(path, bytes, count);
         }
     }
-    if (looks_like_ascii(bytes)) return read_ascii_stl(path, bytes);
+    // An ASCII STL may start with a UTF-8 byte order mark, which some editors write; a binary one whose header
+    // starts with those bytes was read above, its size matching its triangle count.
+    std::string_view text = bytes;
+    if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+    if (looks_like_ascii(text)) return read_ascii_stl(path, text);
     if (bytes.size() < k_header_size) {
         fail(path, "truncated or not an STL file (" + std::to_string(bytes.size()) +
                        " bytes: too short for a binary STL, and no ASCII 'solid' header)");

@@ -305,12 +305,14 @@ TEST_F(MeshIO, a_utf8_byte_order_mark_is_skipped_in_text_formats) {
     const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
                             "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                             "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-    for (const auto& [name, text] : {std::pair{"t.off", off}, std::pair{"t.obj", obj}, std::pair{"t.ply", ply}}) {
+    const std::string stl = ascii_stl(tetrahedron_soup());
+    for (const auto& [name, text] :
+         {std::pair{"t.off", off}, std::pair{"t.obj", obj}, std::pair{"t.ply", ply}, std::pair{"t.stl", stl}}) {
         const MeshData plain = geotri::read_mesh(write_bytes(std::string("plain_") + name, text));
         const MeshData marked = geotri::read_mesh(write_bytes(std::string("bom_") + name, bom + text));
         EXPECT_EQ(marked.positions, plain.positions) << name;
         EXPECT_EQ(marked.triangles, plain.triangles) << name;
-        EXPECT_EQ(plain.positions.size(), 3u) << name;
+        EXPECT_GE(plain.positions.size(), 3u) << name;
     }
 }
 
