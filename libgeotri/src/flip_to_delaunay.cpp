@@ -16,6 +16,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -476,15 +477,16 @@ public:
 
     /// Tries `moves` and keeps the first that is possible and lowers the count: G and report become its, and
     /// `kept` grows by its operations. Moves that were tried before without success go last, in their order: a
-    /// move that helps is then found sooner, and none is left out. The moves are tried in batches of one per
-    /// thread, in parallel; moves after the kept one in its batch are dropped uncounted, so that G and every count
-    /// are the same for any thread count. A move that throws InvalidInput found G unfit for it around there
-    /// (untangling works on an invalid G): it counts as not possible. With a `budget`, each move tried spends the
-    /// work of its propagations, and none is tried once it is spent.
+    /// move that helps is then found sooner, and none is left out. The moves run in parallel, each thread taking
+    /// the next one as soon as it is free, but their outcomes are read in order, as if they had run one after
+    /// another: moves after the kept one are dropped uncounted, so that G and every count are the same for any
+    /// thread count. A move that throws InvalidInput found G unfit for it around there (untangling works on an
+    /// invalid G): it counts as not possible. With a `budget`, each move tried spends the work of its
+    /// propagations, and none after the one that spends the rest is read.
     bool keep_first_better(std::vector<Move> moves, int& kept, WorkBudget* budget = nullptr) {
         std::stable_partition(moves.begin(), moves.end(), [&](const Move& m) { return !failed_.count(m.key); });
         struct Trial {
-            std::optional<GeodesicTriangulation> g;
+            std::optional<GeodesicTriangulation> g;  ///< kept only where it is better
             std::optional<ValidationReport> report;
             int cheap = 0;  ///< violations of conditions 1-3
             int operations = 0;
@@ -495,58 +497,77 @@ public:
         const CountViolations count_trial = [this](const GeodesicTriangulation& trial) {
             return count_->count(trial, verdicts_);
         };
-        for (std::size_t first = 0; first < moves.size(); first += static_cast<std::size_t>(threads_)) {
-            const std::size_t n = std::min(moves.size() - first, static_cast<std::size_t>(threads_));
-            std::vector<Trial> trials(n);
+        const std::size_t n = moves.size();
+        std::vector<Trial> trials(n);
+        // No trial after `last` is read: the first found better or failing, or the one whose work, added to the
+        // work of every trial before it, spends the budget. Batches of one trial per thread left threads idle
+        // while the slowest of a batch ran (femur_cgal's nested collapses: 0 and 5.7M windows in one batch).
+        std::mutex progress;
+        std::size_t last = n;
+        std::size_t finished_before = 0;  ///< every trial before it has finished
+        std::vector<char> finished(n, 0);
+        std::size_t spent = budget ? budget->spent : 0;
 #ifdef _OPENMP
-#pragma omp parallel for num_threads(threads_) schedule(static, 1)
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
 #endif
-            for (long i = 0; i < static_cast<long>(n); ++i) {
-                Trial& t = trials[static_cast<std::size_t>(i)];
-                try {
-                    t.g.emplace(g_);
-                    geodesic::ExactGeodesic& p = propagation();
-                    const std::size_t work_before = p.windows_created_total();
-                    try {
-                        t.operations = moves[first + static_cast<std::size_t>(i)].run(*t.g, p, count_trial);
-                    } catch (const InvalidInput&) {
-                        t.operations = 0;
-                    }
-                    t.work = p.windows_created_total() - work_before;
-                    t.better = t.operations > 0 &&
-                               lowers_violations(*t.g, report_, verdicts_, *count_, t.cheap, t.report);
-                } catch (...) {
-                    t.error = std::current_exception();
-                }
+        for (long i = 0; i < static_cast<long>(n); ++i) {
+            const auto k = static_cast<std::size_t>(i);
+            {
+                std::lock_guard<std::mutex> lock(progress);
+                if (k > last) continue;
             }
-            for (std::size_t i = 0; i < n; ++i) {
-                Trial& t = trials[i];
-                if (t.error) std::rethrow_exception(t.error);
-                if (budget) budget->spent += t.work;
-                if (t.better) {
-                    if (!t.report) {
-                        ValidationOptions no_overlay;
-                        no_overlay.overlay = false;
-                        t.report = detail::validate(*t.g, no_overlay, verdicts_);
-                        check_count(t.cheap, *t.report, "a kept trial");
-                    }
-                    g_ = std::move(*t.g);
-                    report_ = std::move(*t.report);
-                    verdicts_ = detail::PolylineVerdicts(g_, verdicts_);
-                    recount();
-                    kept += t.operations;
-                    // A collapse renumbers the coarse vertices, and with them the keys.
-                    const int kind = moves[first + i].key[0];
-                    if (kind == k_collapse || kind == k_collapse_and_untangle || kind == k_collapse_and_untangle_nested)
-                        failed_.clear();
-                    return true;
+            Trial& t = trials[k];
+            try {
+                t.g.emplace(g_);
+                geodesic::ExactGeodesic& p = propagation();
+                const std::size_t work_before = p.windows_created_total();
+                try {
+                    t.operations = moves[k].run(*t.g, p, count_trial);
+                } catch (const InvalidInput&) {
+                    t.operations = 0;
                 }
-                ++(t.operations == 0 ? result_.untangle_refused : result_.untangle_rejected);
-                failed_.insert(moves[first + i].key);
-                if (budget && budget->spent_all() && first + i + 1 < moves.size()) {
-                    result_.thorough_budget_spent = true;
-                    return false;  // the moves after it in its batch are dropped uncounted, as after a kept one
+                t.work = p.windows_created_total() - work_before;
+                t.better = t.operations > 0 && lowers_violations(*t.g, report_, verdicts_, *count_, t.cheap, t.report);
+            } catch (...) {
+                t.error = std::current_exception();
+            }
+            if (!t.better) t.g.reset();
+            std::lock_guard<std::mutex> lock(progress);
+            finished[k] = 1;
+            if (t.better || t.error) last = std::min(last, k);
+            if (k > last) t.g.reset();  // a better one comes before it: only memory now
+            for (; finished_before < n && finished[finished_before]; ++finished_before) {
+                spent += trials[finished_before].work;
+                if (budget && budget->limit > 0 && spent >= budget->limit) last = std::min(last, finished_before);
+            }
+        }
+        for (std::size_t i = 0; i < n && i <= last; ++i) {
+            Trial& t = trials[i];
+            if (t.error) std::rethrow_exception(t.error);
+            if (budget) budget->spent += t.work;
+            if (t.better) {
+                if (!t.report) {
+                    ValidationOptions no_overlay;
+                    no_overlay.overlay = false;
+                    t.report = detail::validate(*t.g, no_overlay, verdicts_);
+                    check_count(t.cheap, *t.report, "a kept trial");
                 }
+                g_ = std::move(*t.g);
+                report_ = std::move(*t.report);
+                verdicts_ = detail::PolylineVerdicts(g_, verdicts_);
+                recount();
+                kept += t.operations;
+                // A collapse renumbers the coarse vertices, and with them the keys.
+                const int kind = moves[i].key[0];
+                if (kind == k_collapse || kind == k_collapse_and_untangle || kind == k_collapse_and_untangle_nested)
+                    failed_.clear();
+                return true;
+            }
+            ++(t.operations == 0 ? result_.untangle_refused : result_.untangle_rejected);
+            failed_.insert(moves[i].key);
+            if (budget && budget->spent_all() && i + 1 < n) {
+                result_.thorough_budget_spent = true;
+                return false;  // the moves after it are dropped uncounted, as after a kept one
             }
         }
         return false;
