@@ -73,6 +73,7 @@ int run(tools::Tool& tool) {
     if (options.max_length == 0.0 && options.target_faces == 0 && options.min_angle_deg == 0.0)
         throw CLI::ValidationError("give at least one of --max-length, --faces and --min-angle");
     options.flip = !no_flip;
+    options.threads = tool.common.threads;
     options.remove_vertices = !keep_vertices;
 
     tools::Progress progress(tool.program(), tool.verbose());

@@ -165,7 +165,8 @@ public:
 private:
     template <class Work>
     void for_each_parallel(std::size_t n, Work work) const {
-        detail::for_each_with_propagation(g_.fine().mesh, n, options_.threads, work, options_.propagation);
+        detail::for_each_with_propagation(g_.fine().mesh, n, options_.threads, work, options_.propagation,
+                                          options_.propagations);
     }
 
     /// e and the four other edges of its two faces: the edges whose faces a flip of e changes.
@@ -779,6 +780,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                     FlipToDelaunayOptions inner = options;
                     inner.threads = 1;  // the trials run in parallel already
                     inner.propagation = &propagation;
+                    inner.propagations = nullptr;  // the pool's objects are for one team at a time
                     inner.progress = nullptr;
                     inner.thorough = nested ? 1 : 0;
                     // Half the budget, and never 0 where there is one: 0 would lift it.

@@ -4,10 +4,12 @@
 
 #include <geodesic/exact_geodesic.h>
 #include <geodesic/mesh.h>
+#include <geotri/propagation_pool.h>
 
 #include <cstddef>
 #include <exception>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #ifdef _OPENMP
@@ -17,13 +19,14 @@
 namespace geotri::detail {
 
 /// Calls work(k, propagation) for k in [0, n) on `threads` threads (0: as many as OpenMP likes), each with a
-/// propagation object over `mesh`: the calling thread uses `reuse` when given, the others one of their own, made on
-/// first use (making one costs a pass over the mesh: on a mesh of 200k faces, refinement spent 14% of its time
-/// making them). Rethrows the first exception (in k order) after the loop. The result is the same for any thread
-/// count when work(k, ...) writes only what belongs to k.
+/// propagation object over `mesh`: the calling thread uses `reuse` when given, the others those of `pool` when
+/// given, else one of their own, made on first use (making one costs a pass over the mesh: on a mesh of 200k
+/// faces, refinement spent 14% of its time making them). Rethrows the first exception (in k order) after the loop.
+/// The result is the same for any thread count when work(k, ...) writes only what belongs to k.
 template <class Work>
 void for_each_with_propagation(const geodesic::Mesh& mesh, std::size_t n, int threads, Work work,
-                               geodesic::ExactGeodesic* reuse = nullptr) {
+                               geodesic::ExactGeodesic* reuse = nullptr, PropagationPool* pool = nullptr) {
+    if (pool && &pool->mesh() != &mesh) throw std::invalid_argument("for_each_with_propagation: another mesh's pool");
     std::vector<std::exception_ptr> errors(n);
     const long count = static_cast<long>(n);
     int team = 1;
@@ -37,8 +40,10 @@ void for_each_with_propagation(const geodesic::Mesh& mesh, std::size_t n, int th
 #endif
     {
         geodesic::ExactGeodesic* mine = reuse;
+        int thread = 0;
 #ifdef _OPENMP
-        if (omp_get_thread_num() != 0) mine = nullptr;
+        thread = omp_get_thread_num();
+        if (thread != 0) mine = nullptr;
 #endif
         std::unique_ptr<geodesic::ExactGeodesic> own;  // this thread's, reused across iterations
 #ifdef _OPENMP
@@ -47,6 +52,7 @@ void for_each_with_propagation(const geodesic::Mesh& mesh, std::size_t n, int th
         for (long i = 0; i < count; ++i) {
             const std::size_t k = static_cast<std::size_t>(i);
             try {
+                if (!mine && pool) mine = &pool->of_thread(thread);
                 if (!mine) {
                     own = std::make_unique<geodesic::ExactGeodesic>(mesh);
                     mine = own.get();

@@ -99,8 +99,8 @@ public:
     /// shortest geodesic on T when that one stays inside the polygon (it leaves and reaches its ends inside the
     /// polygon's corners and meets no side), else, with `region_fallback`, the shortest path inside the faces'
     /// patches (cut out of `overlay`, or of T alone when it is null). Empty, or why not.
-    std::string measure(geodesic::ExactGeodesic& propagation, int threads, bool region_fallback,
-                        const Overlay* overlay) {
+    std::string measure(geodesic::ExactGeodesic& propagation, int threads, PropagationPool* pool,
+                        bool region_fallback, const Overlay* overlay) {
         const CoarseMesh& coarse = g_.coarse();
         // At corner i, positions count counter-clockwise from side i (to corner i+1) up to the reversed side i-1
         // (to corner i-1): the polygon's inner angle there.
@@ -116,7 +116,8 @@ public:
         std::vector<std::vector<std::size_t>> leaving(k_);  // per corner: the ends of its diagonals that leave
         detail::for_each_with_propagation(
             g_.fine().mesh, k_, threads,
-            [&](std::size_t i, geodesic::ExactGeodesic& mine) { leaving[i] = measure_from(i, mine); }, &propagation);
+            [&](std::size_t i, geodesic::ExactGeodesic& mine) { leaving[i] = measure_from(i, mine); }, &propagation,
+            pool);
         std::vector<std::pair<std::size_t, std::size_t>> outside;  // diagonals whose shortest geodesic leaves
         for (std::size_t i = 0; i < k_; ++i)
             for (std::size_t j : leaving[i]) outside.emplace_back(i, j);
@@ -318,7 +319,8 @@ ReconnectResult reconnect_polygon(GeodesicTriangulation& g, const std::vector<Fa
         propagation = own.get();
     }
     Reconnection reconnection(g, polygon, faces);
-    if (const std::string why = reconnection.measure(*propagation, options.threads, options.region_fallback, options.overlay);
+    if (const std::string why = reconnection.measure(*propagation, options.threads, options.propagations,
+                                                        options.region_fallback, options.overlay);
         !why.empty())
         return refuse(why);
     const double best = reconnection.best_triangulation();

@@ -1,6 +1,7 @@
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
 #include <geotri/flip.h>
+#include <geotri/propagation_pool.h>
 #include <geotri/reconnect.h>
 #include <geotri/refine.h>
 #include <geotri/split.h>
@@ -59,6 +60,10 @@ constexpr double k_nearly_done = 0.05;
 constexpr double k_max_radius_ratio = 4.0;
 // How many fine faces the search for a curved vertex near a circumcentre may look at.
 constexpr std::size_t k_max_search_faces = 2000;
+// Below this many faces of T, the flips and reconnections after each split run on one thread: geotri-refine at 25
+// degrees on two threads took femur_cgal (7.8k faces) 3.2 -> 3.6 s, and sped up from about 20k faces
+// (lucy_100k 4.2 -> 3.4 s, turbineblade 3.4 -> 2.6 s).
+constexpr int k_min_faces_for_threads = 20000;
 
 std::array<HalfedgeHandle, 3> halfedges_of(const CoarseMesh& coarse, FaceHandle f) {
     const HalfedgeHandle h0 = coarse.halfedge_handle(f), h1 = coarse.next_halfedge_handle(h0);
@@ -167,7 +172,7 @@ public:
     /// `curved_fraction`: a vertex of T whose cone angle differs from 2π by more than this fraction of the minimum
     /// angle counts as curved.
     Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result, double curved_fraction)
-        : g_(g), options_(options), result_(result), propagation_(g.fine().mesh) {
+        : g_(g), options_(options), result_(result), propagation_(g.fine().mesh), pool_(g.fine().mesh) {
         const geodesic::Mesh& mesh = g.fine().mesh;
         double sum = 0.0;
         for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
@@ -176,12 +181,15 @@ public:
         budget_ = options.max_new_vertices > 0 ? options.max_new_vertices : std::numeric_limits<int>::max();
         min_angle_ = options.min_angle_deg * k_pi / 180.0;
         curved_ = curved_fraction * min_angle_;
-        // The flips after a split evaluate a handful of edges: one thread does them faster than a team. Without the
-        // region fallback: with it (cheap since the patches are cut out alone), triceratops reaches 25 degrees,
-        // but lucy_100k, man and armadillo end lower (5.0 -> 0.3, 4.3 -> 0.9, 7.2 -> 5.5 degrees).
-        flip_options_.threads = 1;
+        // The flips after a split evaluate a handful of edges, in parallel with the pool's objects (a team whose
+        // threads made their own at every call took as much wall time as one thread); on a small T their
+        // propagations are too short for a team to pay. Without the region fallback:
+        // with it (cheap since the patches are cut out alone), triceratops reaches 25 degrees, but lucy_100k, man
+        // and armadillo end lower (5.0 -> 0.3, 4.3 -> 0.9, 7.2 -> 5.5 degrees).
+        flip_options_.threads = mesh.num_faces() < k_min_faces_for_threads ? 1 : options.threads;
         flip_options_.region_fallback = false;
         flip_options_.propagation = &propagation_;
+        flip_options_.propagations = &pool_;
         for (VertexHandle v : g.coarse().vertices()) {
             if (g.location(v).kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(g.location(v).vertex);
             given_.push_back(g.location(v));
@@ -582,11 +590,10 @@ private:
             options.check_validity = false;  // the local checks keep a valid G valid
             options.required_gain = flip_options_.margin;
             options.propagation = &propagation_;
-            // One thread, as for the flips: a team's other thread made its own propagation object over T at every
-            // removal tried (a pass over the mesh) and spun between them, for a polygon of a handful of corners.
-            // The same files; CPU time of refining turbineblade at 25 degrees 5.1 -> 3.5 s, for the same wall time
-            // on an idle machine (and 4.2 -> 3.8 s with another job running).
-            options.threads = 1;
+            // The pool's objects, as for the flips: a team whose other thread made its own propagation object over
+            // T at every removal tried (a pass over the mesh) took as much wall time as one thread.
+            options.propagations = &pool_;
+            options.threads = flip_options_.threads;
             options.region_fallback = false;
             GeodesicTriangulation trial = g_;
             const ReconnectResult done = reconnect_vertex(trial, v, options);
@@ -809,6 +816,7 @@ private:
     const RefineOptions& options_;
     RefineResult& result_;
     geodesic::ExactGeodesic propagation_;
+    PropagationPool pool_;  ///< for the other threads of the flips' and reconnections' parallel loops
     FlipToDelaunayOptions flip_options_;
     std::set<int> coarse_at_fine_vertex_;  ///< the vertices of T that coarse vertices sit on
     std::vector<SurfacePoint> given_;       ///< the locations of the vertices of the G given

@@ -126,6 +126,26 @@ TEST(Refine, bundled_bob_reaches_30_degrees) {
     check_min_angle(traced(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply", 100), 30.0, "bob_small");
 }
 
+// The flips after each split and the reconnections run their propagations in parallel on a T as large as the bundled
+// vertebra's (34k faces), with the objects of a pool kept for the whole refinement: the same G for any thread count.
+TEST(Refine, the_result_is_the_same_for_any_thread_count) {
+    GeodesicTriangulation given =
+        traced(std::string(GEOTRI_TEST_DATA) + "/../../examples/data/lumbar_vertebra.ply", 320);
+    flip_to_delaunay(given);
+    std::vector<std::vector<Polyline>> results;
+    for (int threads : {1, 2, 3}) {
+        GeodesicTriangulation g = given;
+        RefineOptions options;
+        options.min_angle_deg = 25.0;
+        options.threads = threads;
+        const RefineResult r = refine(g, options);
+        EXPECT_GT(r.flips, 0) << threads << " threads";
+        results.push_back(polylines_of(g));
+    }
+    EXPECT_EQ(results[1], results[0]);
+    EXPECT_EQ(results[2], results[0]);
+}
+
 TEST(Refine, with_keep_vertices_every_vertex_of_the_g_given_stays) {
     GeodesicTriangulation g = traced(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply", 100);
     const GeodesicTriangulation given = g;

@@ -3,6 +3,7 @@
 
 #include <geotri/flip.h>
 #include <geotri/geodesic_triangulation.h>
+#include <geotri/propagation_pool.h>
 #include <geotri/validate.h>
 
 #include <array>
@@ -55,6 +56,9 @@ struct FlipToDelaunayOptions {
     /// A propagation object over g.fine().mesh for the calling thread to reuse (saves its setup, which costs as
     /// much as a short propagation); one is made per call when null, and each other thread makes its own.
     geodesic::ExactGeodesic* propagation = nullptr;
+    /// Propagation objects over g.fine().mesh for the other threads of improve's evaluations to reuse across calls
+    /// (improve_around() in a loop); each thread makes its own per call when null.
+    PropagationPool* propagations = nullptr;
     /// Called after each untangle round and each improve sweep with a line saying where it is.
     std::function<void(const std::string&)> progress;
 };

@@ -14,6 +14,7 @@ namespace geotri {
 namespace geodesic {
 class ExactGeodesic;
 }
+class PropagationPool;
 struct Overlay;
 
 struct ReconnectOptions {
@@ -28,8 +29,10 @@ struct ReconnectOptions {
     /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
     geodesic::ExactGeodesic* propagation = nullptr;
     /// Threads for the diagonals' propagations (one per corner); 0: as many as OpenMP likes. The calling thread
-    /// uses `propagation`, each other thread makes its own. The result is the same for any count.
+    /// uses `propagation`, each other thread one of `propagations`, or makes its own when that is null. The result
+    /// is the same for any count.
     int threads = 0;
+    PropagationPool* propagations = nullptr;
     /// When the shortest geodesic between two corners leaves the polygon, try the shortest path inside the faces'
     /// patches, which needs the overlay.
     bool region_fallback = true;

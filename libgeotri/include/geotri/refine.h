@@ -45,6 +45,9 @@ struct RefineOptions {
     /// stops there and says so. Past the default cap, the corners above 180 degrees left are still cut (see
     /// min_angle_deg); a cap given here is never passed.
     int max_new_vertices = 0;
+    /// Threads for the propagations of the flips after each split and of the reconnections that take out a vertex;
+    /// 0: as many as OpenMP likes. The result is the same for any count.
+    int threads = 0;
     /// Called now and then with a line saying where refinement is.
     std::function<void(const std::string&)> progress;
 };
