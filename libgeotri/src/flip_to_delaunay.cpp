@@ -507,7 +507,7 @@ public:
         std::size_t last = n;
         std::size_t finished_before = 0;  ///< every trial before it has finished
         std::vector<char> finished(n, 0);
-        std::size_t spent = budget ? budget->spent : 0;
+        WorkBudget read = budget ? *budget : WorkBudget{};  ///< the budget as the trials read so far spent it
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
 #endif
@@ -538,8 +538,8 @@ public:
             if (t.better || t.error) last = std::min(last, k);
             if (k > last) t.g.reset();  // a better one comes before it: only memory now
             for (; finished_before < n && finished[finished_before]; ++finished_before) {
-                spent += trials[finished_before].work;
-                if (budget && budget->limit > 0 && spent >= budget->limit) last = std::min(last, finished_before);
+                read.spent += trials[finished_before].work;
+                if (read.spent_all()) last = std::min(last, finished_before);
             }
         }
         for (std::size_t i = 0; i < n && i <= last; ++i) {

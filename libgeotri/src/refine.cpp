@@ -183,9 +183,9 @@ public:
         curved_ = curved_fraction * min_angle_;
         // The flips after a split evaluate a handful of edges, in parallel with the pool's objects (a team whose
         // threads made their own at every call took as much wall time as one thread); on a small T their
-        // propagations are too short for a team to pay. Without the region fallback:
-        // with it (cheap since the patches are cut out alone), triceratops reaches 25 degrees, but lucy_100k, man
-        // and armadillo end lower (5.0 -> 0.3, 4.3 -> 0.9, 7.2 -> 5.5 degrees).
+        // propagations are too short for a team to pay. Without the region fallback: with it (cheap since the
+        // patches are cut out alone), triceratops reaches 25 degrees, but lucy_100k, man and armadillo end lower
+        // (5.0 -> 0.3, 4.3 -> 0.9, 7.2 -> 5.5 degrees).
         flip_options_.threads = mesh.num_faces() < k_min_faces_for_threads ? 1 : options.threads;
         flip_options_.region_fallback = false;
         flip_options_.propagation = &propagation_;
