@@ -264,7 +264,7 @@ bool run_one(const std::string& spec, const Options& options) {
     const auto stats = propagation.stats();
     std::cerr << label << ": windows created " << stats.windows_created << ", propagated " << stats.windows_propagated
               << ", pruned " << stats.windows_pruned << ", merged " << stats.windows_merged << ", freed "
-              << stats.windows_freed << ", vertex emissions "
+              << stats.windows_freed << ", not made " << stats.windows_not_made << ", vertex emissions "
               << stats.vertex_emissions << ", peak queue " << stats.peak_queue_size << "\n";
     if (!options.dump.empty()) {
         std::FILE* file = std::fopen(options.dump.c_str(), "w");

@@ -54,6 +54,8 @@ constexpr int k_compare_lookahead = 4;
 constexpr int k_list_reach = std::max(k_merge_lookahead, k_compare_lookahead);
 // Without keep_windows, the windows that no longer count are freed once there are at least this many windows.
 constexpr std::size_t k_min_windows_to_free = 1 << 16;
+// first_window_ of a halfedge whose edge the wavefront has passed (close_passed_edges): no window comes there again.
+constexpr int k_closed = -2;
 
 /// A hint to start loading memory that will soon be read; no effect on results.
 inline void prefetch(const void* address) {
@@ -107,6 +109,9 @@ private:
     void relax_vertex(int v, double distance, Predecessor predecessor);
     void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
     void retire_beyond_reach(int h);
+    bool wavefront_has_passed(int h) const;
+    void close_edge(int h);
+    void close_passed_edges();
     void free_retired_windows();
     bool trim_by_end_vertices(Window& w) const;
     bool trim_by_other_windows(Window& w, int self) const;
@@ -163,6 +168,11 @@ private:
     std::size_t windows_to_free_at_ = k_min_windows_to_free;  // without keep_windows: free once there are this many
     int lowest_retired_ = std::numeric_limits<int>::max();  // the first window retired since the last pass
     std::vector<int> moved_to_;  // scratch of free_retired_windows()
+    // Without keep_windows: the halfedges whose lists or pending windows the passes that free windows must renumber,
+    // that is, every one with windows but those of closed edges with none pending.
+    std::vector<int> open_halfedges_;
+    bool closes_edges_ = false;  // close_passed_edges() runs: without keep_windows or goals
+    double popped_key_ = 0.0;    // the key of the latest queue entry popped; no later window is nearer
     // Without keep_windows: the propagation that the queries run again, kept between them so that each costs what
     // it explores, not the mesh's size. A query takes it; one that comes meanwhile (from another thread) makes its
     // own.
@@ -213,6 +223,8 @@ void ExactGeodesic::Impl::reset() {
     for (const auto& watch : watches_) watched_[watch.first] = 0;
     touched_vertices_.clear();
     touched_halfedges_.clear();
+    open_halfedges_.clear();
+    popped_key_ = 0.0;
     windows_.clear();
     windows_to_free_at_ = k_min_windows_to_free;
     lowest_retired_ = std::numeric_limits<int>::max();
@@ -407,6 +419,10 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
                                      int origin) {
     const double length = mesh_.length(h);
     if (length <= 0.0) return;
+    if (first_window_[h] == k_closed) {  // nowhere shorter than a path through an end vertex (close_passed_edges)
+        ++stats_.windows_not_made;
+        return;
+    }
     b0 = std::max(b0, 0.0);
     b1 = std::min(b1, length);
     if (!(b0 < b1)) return;
@@ -417,7 +433,10 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     // as well gave up to 30% fewer windows but cost more than it saved (bench/README.md: the 100k icosphere 1.23 ->
     // 0.82 s with the changes that came with it).
     const int id = static_cast<int>(windows_.size());
-    if (w.next_on_edge < 0) touched_halfedges_.push_back(h);
+    if (w.next_on_edge < 0) {
+        touched_halfedges_.push_back(h);
+        if (!keep_windows_) open_halfedges_.push_back(h);
+    }
     first_window_[h] = id;
     w.next_pending = first_pending_[h];
     first_pending_[h] = id;
@@ -455,11 +474,46 @@ void ExactGeodesic::Impl::retire_beyond_reach(int h) {
     }
 }
 
+bool ExactGeodesic::Impl::wavefront_has_passed(int h) const {
+    // Every point x of the edge has a path through an end vertex of length at most U = (d_tail + d_head + L) / 2,
+    // the most that min(d_tail + x, d_head + L - x) reaches. Once both distances are final (at most the popped key,
+    // which no later window goes below) and the popped key is beyond U, every window still to come, or still to
+    // cross, is longer everywhere on the edge than such a path: trim_by_end_vertices would remove it whole, since
+    // the margins here exceed its slack (k_margin times at most the window's value plus twice L) and its cover of
+    // the end vertices (k_cover L).
+    const double d_tail = distance_[mesh_.tail(h)];
+    const double d_head = distance_[mesh_.head(h)];
+    if (!(d_tail <= popped_key_ && d_head <= popped_key_)) return false;
+    const double length = mesh_.length(h);
+    const double through_end = 0.5 * (d_tail + d_head + length);
+    return popped_key_ * (1.0 - 4.0 * k_margin) > through_end + 8.0 * (k_margin + k_cover) * length;
+}
+
+void ExactGeodesic::Impl::close_edge(int h) {
+    // Its windows are read again only to trim windows that come to the edge later, and none is kept from now on:
+    // free_retired_windows() frees them all once they have crossed. They may lie anywhere in the storage, so the
+    // pass reads it all, in order, which costs less than walking the edge's list to mark them (a cache miss each).
+    for (int side : {h, mesh_.twin(h)}) {
+        if (side < 0) continue;
+        if (first_window_[side] == -1) touched_halfedges_.push_back(side);  // for reset()
+        first_window_[side] = k_closed;
+    }
+    lowest_retired_ = 0;
+}
+
+void ExactGeodesic::Impl::close_passed_edges() {
+    // Without this, every edge behind the wavefront kept its k_list_reach newest windows to the end: storage that
+    // grew with the area swept (2.5 windows a halfedge, 60 MB on a sphere of 100k faces), not with the wavefront.
+    for (int h : open_halfedges_)
+        if (first_window_[h] != k_closed && wavefront_has_passed(h)) close_edge(h);
+}
+
 void ExactGeodesic::Impl::free_retired_windows() {
     // A retired window that has crossed its face is read again only by the queries after the propagation, which
     // keep_windows = false gives up. The others move down, in order, since the comparisons of trim_by_other_windows
     // go by the order of the ids. Below the first window retired since the last pass, none moves; and since lists
     // link each window to older ones, none of those links changes either.
+    if (closes_edges_) close_passed_edges();
     const int size = static_cast<int>(windows_.size());
     const int start = std::min(lowest_retired_, size);
     lowest_retired_ = std::numeric_limits<int>::max();
@@ -467,8 +521,9 @@ void ExactGeodesic::Impl::free_retired_windows() {
     int kept = start;
     for (int id = start; id < size; ++id) {
         const Window& w = windows_[id];
-        if (w.retired && w.state != k_pending) continue;
-        if (w.retired) lowest_retired_ = std::min(lowest_retired_, kept);  // to be freed once it has crossed
+        const bool freed = w.retired || first_window_[w.halfedge] == k_closed;
+        if (freed && w.state != k_pending) continue;
+        if (freed) lowest_retired_ = std::min(lowest_retired_, kept);  // to be freed once it has crossed
         moved_to_[id - start] = kept;
         if (kept != id) windows_[kept] = w;
         ++kept;
@@ -481,11 +536,14 @@ void ExactGeodesic::Impl::free_retired_windows() {
             windows_[id].next_on_edge = moved(windows_[id].next_on_edge);  // -1 past the reach: never walked
             windows_[id].next_pending = moved(windows_[id].next_pending);
         }
-        for (int h : touched_halfedges_) {
-            first_window_[h] = moved(first_window_[h]);
+        for (int h : open_halfedges_) {
+            if (first_window_[h] >= 0) first_window_[h] = moved(first_window_[h]);
             first_pending_[h] = moved(first_pending_[h]);
         }
     }
+    // A closed edge's halfedge needs renumbering only while windows of it are still to cross.
+    auto done = [this](int h) { return first_window_[h] == k_closed && first_pending_[h] < 0; };
+    open_halfedges_.erase(std::remove_if(open_halfedges_.begin(), open_halfedges_.end(), done), open_halfedges_.end());
     // Free again when at least half as many windows have come as are left now, so that the work of freeing stays
     // proportional to the windows made; the storage grows by half when that does not fit, and not at every pass,
     // since a new block is copied into and its pages are first touched, which costs more than the pass itself.
@@ -887,6 +945,9 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     if (options.goal_directed && !std::isfinite(max_distance_))
         for (const StopPoint& stop : stops_) goals_.push_back(mesh_.point(stop.point));
     goal_settled_.assign(goals_.size(), 0);
+    // A goal-directed key adds the distance left to a goal, so it bounds no window's distance: closing edges needs
+    // keys that do. (A stop point's estimate loses nothing: a window not made is longer than its corners' paths.)
+    closes_edges_ = !keep_windows_ && goals_.empty();
 
     for (int k = 0; k < static_cast<int>(sources_.size()); ++k) {
         const SurfacePoint& s = sources_[k];
@@ -904,6 +965,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
     while (!queue_.empty()) {
         if (!keep_windows_ && windows_.size() >= windows_to_free_at_) free_retired_windows();
         const auto [key, item] = queue_.pop();
+        popped_key_ = key;
         ++stats_.queue_pops;
         // The windows of the next halfedge to pop have waited since they were made, so they are out of cache:
         // fetch the first while this item is processed.
