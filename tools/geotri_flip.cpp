@@ -55,7 +55,7 @@ int run(tools::Tool& tool) {
                        "Where untangling is stuck with few violations left, 1: also try each edge collapse\n"
                        "there, judged after untangling what it leaves; 2: then with that untangling ending\n"
                        "with such collapses too; 0: neither. Default: 2, until they have made 10^8 windows of\n"
-                       "propagation (20-40 s on 2 cores; the same result on any machine). Given, they go\n"
+                       "propagation (21-28 s on 2 cores; the same result on any machine). Given, they go\n"
                        "on to the end, which can take minutes where they mend nothing")
             ->check(CLI::Range(0, 2));
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")

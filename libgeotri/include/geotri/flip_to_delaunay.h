@@ -44,7 +44,7 @@ struct FlipToDelaunayOptions {
     /// windows_created_total(), the same on any machine and for any thread count). It is checked between trials:
     /// once the trials so far have spent it, untangling stops with what it has
     /// (FlipToDelaunayResult::thorough_budget_spent), so the trial that crosses it still runs to its end (couplingdown
-    /// at its coarsest: 147M). 10^8 is 20-40 s on 2 cores of our development machine, and enough for every mesh that
+    /// at its coarsest: 147M). 10^8 is 21-28 s on 2 cores of our development machine, and enough for every mesh that
     /// they mend above (skull_thing74168 needs 72M, the bundled joint 31M, the others 7-13M). The collapse trials of
     /// the untangling inside one trial at level 2 may spend half of it. 0: no bound.
     std::size_t thorough_budget = 100'000'000;
