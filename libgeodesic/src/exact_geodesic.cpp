@@ -56,6 +56,10 @@ constexpr int k_list_reach = std::max(k_merge_lookahead, k_compare_lookahead);
 constexpr std::size_t k_min_windows_to_free = 1 << 16;
 // first_window_ of a halfedge whose edge the wavefront has passed (close_passed_edges): no window comes there again.
 constexpr int k_closed = -2;
+// How far beyond the longest path through an end vertex, relative to the key, an edge is closed: far more than the
+// rounding by which later keys can fall below the last (wavefront_has_passed), and far less than the windows
+// dropped there exceed that path by (2.6e-3 relative at the least, on boxes, cylinders and grids).
+constexpr double k_close_margin = 1e-8;
 
 /// A hint to start loading memory that will soon be read; no effect on results.
 inline void prefetch(const void* address) {
@@ -419,15 +423,15 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
                                      int origin) {
     const double length = mesh_.length(h);
     if (length <= 0.0) return;
-    if (first_window_[h] == k_closed) {  // nowhere shorter than a path through an end vertex (close_passed_edges)
-        ++stats_.windows_not_made;
-        return;
-    }
     b0 = std::max(b0, 0.0);
     b1 = std::min(b1, length);
     if (!(b0 < b1)) return;
     Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, first_window_[h]};
     if (max_distance_ < k_infinity && w.lower_bound() > max_distance_) return;  // a square root saved otherwise
+    if (w.next_on_edge == k_closed) {  // nowhere shorter than a path through an end vertex (close_passed_edges)
+        ++stats_.windows_not_made;
+        return;
+    }
     // A window is trimmed only when it is about to cross its face (propagate_window), once: by then the distances
     // of its end vertices and the windows it meets on its edge are nearer their last. Trimming when it was added
     // as well gave up to 30% fewer windows but cost more than it saved (bench/README.md: the 100k icosphere 1.23 ->
@@ -480,13 +484,15 @@ bool ExactGeodesic::Impl::wavefront_has_passed(int h) const {
     // which no later window goes below) and the popped key is beyond U, every window still to come, or still to
     // cross, is longer everywhere on the edge than such a path: trim_by_end_vertices would remove it whole, since
     // the margins here exceed its slack (k_margin times at most the window's value plus twice L) and its cover of
-    // the end vertices (k_cover L).
+    // the end vertices (k_cover L). The key is such a bound only up to rounding: a window that ends within k_cover
+    // of a vertex gives it a distance below its own least value by up to k_cover times its edge, and a saddle there
+    // emits from that distance (keys fell by up to 2.3e-10 relative on a box of 1e5 by 1 by 1), hence k_close_margin.
     const double d_tail = distance_[mesh_.tail(h)];
     const double d_head = distance_[mesh_.head(h)];
     if (!(d_tail <= popped_key_ && d_head <= popped_key_)) return false;
     const double length = mesh_.length(h);
     const double through_end = 0.5 * (d_tail + d_head + length);
-    return popped_key_ * (1.0 - 4.0 * k_margin) > through_end + 8.0 * (k_margin + k_cover) * length;
+    return popped_key_ * (1.0 - k_close_margin) > through_end + 8.0 * (k_margin + k_cover) * length;
 }
 
 void ExactGeodesic::Impl::close_edge(int h) {

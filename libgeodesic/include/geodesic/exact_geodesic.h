@@ -46,7 +46,9 @@ struct PropagationStats {
     std::size_t windows_freed = 0;       ///< without keep_windows: windows freed while the propagation ran
     std::size_t windows_not_made = 0;    ///< without keep_windows: windows that came to an edge the wavefront had
                                          ///< passed (nearer everywhere through an end vertex), so were not made;
-                                         ///< keeping windows, they are made and pruned
+                                         ///< keeping windows, they are made (and pruned, unless the propagation
+                                         ///< stops first). How many depends on when the passes that free windows
+                                         ///< run, which depends on the storage that earlier propagations left
     std::size_t vertex_emissions = 0;    ///< saddle, boundary or source vertices that emitted windows
     std::size_t queue_pushes = 0;        ///< queue entries: halfedges whose windows cross a face, and vertices
     std::size_t queue_pops = 0;
