@@ -58,6 +58,12 @@ int run(tools::Tool& tool) {
                        "propagation (21-28 s on 2 cores; the same result on any machine). Given, they go\n"
                        "on to the end, which can take minutes where they mend nothing")
             ->check(CLI::Range(0, 2));
+    int bisection_rounds = geotri::FlipToDelaunayOptions{}.bisection_rounds;
+    app.add_option("--bisection-rounds", bisection_rounds,
+                   "Where untangling is still stuck after all that, split every edge that a violation\n"
+                   "names at the middle of its polyline and go on: at most this many times (default 4;\n"
+                   "0: never). It adds vertices where G is too coarse to be untangled")
+        ->check(CLI::Range(0, 100));
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
         ->check(CLI::ExistingFile);
     tool.parse();
@@ -72,6 +78,7 @@ int run(tools::Tool& tool) {
     geotri::FlipToDelaunayOptions options;
     options.threads = tool.common.threads;
     options.thorough = thorough;
+    options.bisection_rounds = bisection_rounds;
     if (thorough_option->count() > 0) options.thorough_budget = 0;
     options.criterion = criterion_name == "length" ? geotri::FlipCriterion::length : geotri::FlipCriterion::angle;
     options.progress = [&progress](const std::string& where) { progress.stage(where); };
@@ -110,6 +117,7 @@ int run(tools::Tool& tool) {
         summary.add("untangle_meeting_splits", r.untangle_meeting_splits);
         summary.add("untangle_collapses", r.untangle_collapses);
         summary.add("untangle_relocations", r.untangle_relocations);
+        summary.add("untangle_bisections", r.untangle_bisections);
         summary.add("untangle_rejected", r.untangle_rejected);
         summary.add("untangle_refused", r.untangle_refused);
         summary.add("untangle_stuck", r.untangle_stuck);
@@ -142,9 +150,9 @@ int run(tools::Tool& tool) {
                      counts(r.violations_before).c_str());
         std::fprintf(stderr,
                      "%s: untangle: %d flips, %d fork splits, %d splits at meetings, %d collapses and %d vertex moves "
-                     "kept, %d tried and undone, %d not possible%s\n",
+                     "kept, %d edges bisected, %d tried and undone, %d not possible%s\n",
                      program, r.untangle_flips, r.untangle_fork_splits, r.untangle_meeting_splits, r.untangle_collapses,
-                     r.untangle_relocations,
+                     r.untangle_relocations, r.untangle_bisections,
                      r.untangle_rejected, r.untangle_refused,
                      r.untangle_stuck ? "; stuck: no operation lowers the violations left" : "");
         if (r.improve_skipped) {

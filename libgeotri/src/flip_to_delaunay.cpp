@@ -574,6 +574,17 @@ public:
         return false;
     }
 
+    /// Makes `next` G, whatever its violations: a step that is not judged by them (bisect_tangled_edges()).
+    void replace(GeodesicTriangulation next) {
+        g_ = std::move(next);
+        verdicts_ = detail::PolylineVerdicts(g_, verdicts_);
+        ValidationOptions no_overlay;
+        no_overlay.overlay = false;
+        report_ = detail::validate(g_, no_overlay, verdicts_);
+        recount();
+        failed_.clear();
+    }
+
 private:
     /// Keeps what it takes to count the violations of trial copies of G from what they change.
     void recount() {
@@ -806,6 +817,43 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                (options.thorough >= 1 && try_collapse_and_untangle(false)) ||
                (options.thorough >= 2 && try_collapse_and_untangle(true));
     };
+    // Where no move lowers the count, G is too coarse there: its geodesics wind around handles and between holes
+    // of T that its vertices are too few to separate (stress/cheese.off, genus 133, at 1174 faces; the same mesh
+    // decimated to 2400 faces untangles). Bisecting every edge that a violation names, at the middle of its
+    // polyline, halves those geodesics; the count may rise, and untangling goes on from there. A bounded number
+    // of rounds keeps it finite.
+    int bisection_rounds = 0;
+    auto bisect_tangled_edges = [&] {
+        if (focus || bisection_rounds >= options.bisection_rounds) return false;
+        std::set<std::pair<int, int>> ends;  // by their end vertices: splits renumber nothing but add edges
+        const CoarseMesh& coarse = g.coarse();
+        for (const Violation& v : report.violations)
+            for (int index : v.coarse_edges) {
+                const HalfedgeHandle h = coarse.halfedge_handle(EdgeHandle(index), 0);
+                ends.insert({coarse.from_vertex_handle(h).idx(), coarse.to_vertex_handle(h).idx()});
+            }
+        GeodesicTriangulation next = g;
+        int splits = 0;
+        geodesic::ExactGeodesic propagation(g.fine().mesh);
+        SplitOptions unchecked;
+        unchecked.propagation = &propagation;
+        unchecked.checked = false;
+        for (const auto& [a, b] : ends) {
+            const HalfedgeHandle h =
+                next.coarse().find_halfedge(OpenMesh::VertexHandle(a), OpenMesh::VertexHandle(b));
+            if (!h.is_valid()) continue;
+            try {
+                if (split_edge(next, next.coarse().edge_handle(h), 0.5, unchecked).done) ++splits;
+            } catch (const InvalidInput&) {
+                // G is unfit for it around there: that edge stays
+            }
+        }
+        if (splits == 0) return false;
+        ++bisection_rounds;
+        result.untangle_bisections += splits;
+        untangler.replace(std::move(next));
+        return true;
+    };
     int round = 0;
     while (!report.valid && result.untangle_flips + result.untangle_fork_splits + result.untangle_meeting_splits +
                                     result.untangle_collapses + result.untangle_relocations <
@@ -820,7 +868,8 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         // (femur_cgal: 59M windows, 22 s; without them 13M, 6.7 s) and mended nothing more; nesting collapses is
         // what level 2 does.
         if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_meeting_splits() &&
-            (focus || !try_collapses()) && !try_relocations(k_relocation_rings, 0) && !try_last_resorts()) {
+            (focus || !try_collapses()) && !try_relocations(k_relocation_rings, 0) && !try_last_resorts() &&
+            !bisect_tangled_edges()) {
             result.untangle_stuck = true;
             break;
         }

@@ -395,10 +395,10 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
     std::cout << "[ flip     ] " << made_valid << " of " << invalid << " invalid traced G became valid\n";
 }
 
-/// `name` from the shared meshes, decimated to its coarsest or to 320 faces and traced in the decimation's classes,
-/// as the pipeline does.
-GeodesicTriangulation traced_as_the_pipeline_does(const std::string& name, bool coarsest) {
-    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh(name).path));
+/// The mesh at `path`, decimated to its coarsest or to 320 faces and traced in the decimation's classes, as the
+/// pipeline does.
+GeodesicTriangulation traced_in_classes(const std::string& path, const std::string& name, bool coarsest) {
+    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
     DecimateOptions options;
     if (coarsest)
         options.coarsest = true;
@@ -413,6 +413,11 @@ GeodesicTriangulation traced_as_the_pipeline_does(const std::string& name, bool 
     return traced;
 }
 
+/// `name` from the shared meshes, as traced_in_classes() does.
+GeodesicTriangulation traced_as_the_pipeline_does(const std::string& name, bool coarsest) {
+    return traced_in_classes(test::shared_mesh(name).path, name, coarsest);
+}
+
 TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_t) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
@@ -422,9 +427,10 @@ TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_
     const std::string name = "cad/boxpart.obj";
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
 
-    // Without the collapses judged after untangling (thorough 0), which go on to make it valid.
+    // Without the collapses judged after untangling (thorough 0), which go on to make it valid, nor bisections.
     FlipToDelaunayOptions plain;
     plain.thorough = 0;
+    plain.bisection_rounds = 0;
     GeodesicTriangulation g = traced;
     const FlipToDelaunayResult r = flip_to_delaunay(g, plain);
     EXPECT_GE(r.untangle_meeting_splits, 1);
@@ -490,6 +496,7 @@ TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only
 
     FlipToDelaunayOptions plain;
     plain.thorough = 0;
+    plain.bisection_rounds = 0;  // the last resort after these, which would go on
     GeodesicTriangulation without = traced;
     const FlipToDelaunayResult stuck = flip_to_delaunay(without, plain);
     EXPECT_TRUE(stuck.untangle_stuck);
@@ -524,12 +531,14 @@ TEST(FlipToDelaunay, thorough_untangling_stops_where_its_budget_of_work_is_spent
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
     FlipToDelaunayOptions plain;
     plain.thorough = 0;
+    plain.bisection_rounds = 0;
     GeodesicTriangulation without = traced;
     const FlipToDelaunayResult stuck = flip_to_delaunay(without, plain);
 
     FlipToDelaunayOptions tight;
     tight.thorough = 2;
     tight.thorough_budget = 1;
+    tight.bisection_rounds = 0;  // which would go on once the budget is spent
     tight.threads = 1;
     GeodesicTriangulation g = traced;
     const FlipToDelaunayResult r = flip_to_delaunay(g, tight);
@@ -563,6 +572,7 @@ TEST(FlipToDelaunay, by_default_untangling_nests_those_collapses_and_makes_femur
     FlipToDelaunayOptions level_1;
     level_1.thorough = 1;
     level_1.thorough_budget = 0;
+    level_1.bisection_rounds = 0;
     GeodesicTriangulation stuck_g = traced;
     const FlipToDelaunayResult stuck = flip_to_delaunay(stuck_g, level_1);
     EXPECT_FALSE(stuck.valid_after);
@@ -575,6 +585,35 @@ TEST(FlipToDelaunay, by_default_untangling_nests_those_collapses_and_makes_femur
     std::cout << "[ flip     ] " << name << " at 320 faces, by default: " << total(r.violations_before) << " -> "
               << total(r.violations_after) << " violations (" << total(stuck.violations_after) << " with 1), "
               << r.untangle_collapses << " collapses, " << r.seconds << " s\n";
+}
+
+TEST(FlipToDelaunay, untangling_bisects_the_tangled_edges_where_nothing_else_helps) {
+    // The bundled joint (genus 2) at its coarsest, 32 faces, traced in the decimation's classes: untangling, its
+    // last resorts included, cannot make it valid; bisecting the edges that the violations name lets it go on.
+    const GeodesicTriangulation traced =
+        traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", "cad/joint.off", true);
+    FlipToDelaunayOptions without;
+    without.bisection_rounds = 0;
+    GeodesicTriangulation stuck_g = traced;
+    const FlipToDelaunayResult stuck = flip_to_delaunay(stuck_g, without);
+    EXPECT_FALSE(stuck.valid_after);
+    EXPECT_EQ(stuck.untangle_bisections, 0);
+
+    GeodesicTriangulation g = traced;
+    const FlipToDelaunayResult r = flip_to_delaunay(g);
+    EXPECT_GT(r.untangle_bisections, 0);
+    EXPECT_TRUE(r.valid_after) << describe(validate(g));
+    expect_valid_with_area(g);
+    FlipToDelaunayOptions one_thread;
+    one_thread.threads = 1;
+    GeodesicTriangulation again = traced;
+    flip_to_delaunay(again, one_thread);
+    expect_same_polylines(again, g, "1 thread");
+
+    std::cout << "[ flip     ] bundled joint at its coarsest: " << total(r.violations_before) << " -> "
+              << total(r.violations_after) << " violations (" << total(stuck.violations_after)
+              << " without bisections), " << r.untangle_bisections << " edges bisected, " << g.coarse().n_faces()
+              << " faces, " << r.seconds << " s\n";
 }
 
 }  // namespace
