@@ -171,8 +171,12 @@ class Refiner {
 public:
     /// `curved_fraction`: a vertex of T whose cone angle differs from 2π by more than this fraction of the minimum
     /// angle counts as curved.
-    Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result, double curved_fraction)
-        : g_(g), options_(options), result_(result), propagation_(g.fine().mesh), pool_(g.fine().mesh) {
+    /// `whole_checks`: every step is also checked with validate() on all of G, overlay included, and refused where
+    /// that finds G invalid (the safety net of refine()).
+    Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result, double curved_fraction,
+            bool whole_checks)
+        : g_(g), options_(options), result_(result), propagation_(g.fine().mesh), pool_(g.fine().mesh),
+          whole_checks_(whole_checks) {
         const geodesic::Mesh& mesh = g.fine().mesh;
         double sum = 0.0;
         for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
@@ -425,6 +429,9 @@ private:
         return options;
     }
 
+    /// Without whole checks, true: the local checks of the operations are what keeps G valid.
+    bool valid_whole(const GeodesicTriangulation& trial) const { return !whole_checks_ || validate(trial).valid; }
+
     /// G becomes `next`, a changed copy.
     void replace_g(GeodesicTriangulation&& next) {
         g_ = std::move(next);
@@ -455,7 +462,7 @@ private:
             shortest_new = std::min(shortest_new, trial.length(trial.coarse().edge_handle(h)));
         const double changed_bar = std::max(keep_above_, changed_floor);
         if (shortest_new < min_length || smallest_corner_around(trial, done.vertex) < floor ||
-            (changed_bar > 0.0 && smallest_changed_corner(trial) < changed_bar)) {
+            (changed_bar > 0.0 && smallest_changed_corner(trial) < changed_bar) || !valid_whole(trial)) {
             ++result_.refused_splits;
             return Tried::refused_shape;
         }
@@ -613,7 +620,7 @@ private:
             double smallest = std::numeric_limits<double>::infinity();
             for (VertexHandle c : done.corners_after) smallest = std::min(smallest, smallest_corner_around(trial, c));
             if (smallest <= done.min_corner_before || smallest < min_angle_ || smallest <= best_corner ||
-                smallest_changed_corner(trial) < keep_above_)
+                smallest_changed_corner(trial) < keep_above_ || !valid_whole(trial))
                 continue;
             best.emplace(std::move(trial));
             best_corner = smallest;
@@ -829,6 +836,7 @@ private:
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;
+    bool whole_checks_ = false;
 };
 
 }  // namespace
@@ -850,49 +858,62 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
                            " violations); make it valid first (geotri-flip)");
     result.angles_before = corner_angle_stats(g);
 
-    // For a second attempt at the minimum angle (a copy shares the polylines: cheap).
+    // The G given, for a second attempt at the minimum angle and for the safety net (a copy shares the polylines).
     const RefineResult given_result = result;
-    std::optional<GeodesicTriangulation> given;
-    if (options.min_angle_deg > 0.0) given.emplace(g);
-    auto run = [&options](GeodesicTriangulation& target, RefineResult& counts, double curved_fraction) {
-        Refiner refiner(target, options, counts, curved_fraction);
-        refiner.bisect();
-        refiner.raise_min_angle();
-        refiner.count_corners_left();
+    const GeodesicTriangulation given = g;
+    // Refines `target` (the G given), with a second attempt where that helps.
+    auto refine_given = [&](GeodesicTriangulation& target, RefineResult& counts, bool whole_checks) {
+        auto run = [&options, whole_checks](GeodesicTriangulation& on, RefineResult& c, double curved_fraction) {
+            Refiner refiner(on, options, c, curved_fraction, whole_checks);
+            refiner.bisect();
+            refiner.raise_min_angle();
+            refiner.count_corners_left();
+        };
+        run(target, counts, k_curved_fraction);
+        // Given up on some triangles, not cascading into the cap: once more with nearly every vertex of T curved,
+        // and the better of the two kept (fewer corners left, then the larger smallest corner that is not exempt).
+        if (options.min_angle_deg > 0.0 && counts.small_corners_left > 0 && !counts.vertex_cap_reached) {
+            if (options.progress)
+                options.progress("gave up on " + std::to_string(counts.small_corners_left) +
+                                 (counts.small_corners_left == 1 ? " corner" : " corners") +
+                                 ": starting again with nearly every vertex of T counted as curved");
+            GeodesicTriangulation second = given;
+            RefineResult second_result = given_result;
+            counts.second_attempt = true;
+            bool finished = true;
+            try {
+                run(second, second_result, k_second_curved_fraction);
+            } catch (const NumericalError& error) {
+                // The second attempt only tries to do better: where it meets numerical trouble, the first stands.
+                counts.second_attempt_error = error.what();
+                finished = false;
+            }
+            second_result.second_attempt = true;
+            const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
+            const bool better = finished && (second_result.small_corners_left < counts.small_corners_left ||
+                                             (second_result.small_corners_left == counts.small_corners_left &&
+                                              smallest_corner_of(second, exempt_below) >
+                                                  smallest_corner_of(target, exempt_below)));
+            if (better) {
+                target = std::move(second);
+                counts = second_result;
+                counts.second_attempt_kept = true;
+            }
+        }
     };
-    run(g, result, k_curved_fraction);
-    // Given up on some triangles, not cascading into the cap: once more with nearly every vertex of T curved, and
-    // the better of the two kept (fewer corners left, then the larger smallest corner that is not exempt).
-    if (given && result.small_corners_left > 0 && !result.vertex_cap_reached) {
-        if (options.progress)
-            options.progress("gave up on " + std::to_string(result.small_corners_left) +
-                             (result.small_corners_left == 1 ? " corner" : " corners") +
-                             ": starting again with nearly every vertex of T counted as curved");
-        GeodesicTriangulation second = *given;
-        RefineResult second_result = given_result;
-        result.second_attempt = true;
-        bool finished = true;
-        try {
-            run(second, second_result, k_second_curved_fraction);
-        } catch (const NumericalError& error) {
-            // The second attempt only tries to do better: where it meets numerical trouble, the first result stands.
-            result.second_attempt_error = error.what();
-            finished = false;
-        }
-        second_result.second_attempt = true;
-        const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
-        const bool better = finished && (second_result.small_corners_left < result.small_corners_left ||
-                                         (second_result.small_corners_left == result.small_corners_left &&
-                                          smallest_corner_of(second, exempt_below) >
-                                              smallest_corner_of(g, exempt_below)));
-        if (better) {
-            g = std::move(second);
-            result = second_result;
-            result.second_attempt_kept = true;
-        }
+    refine_given(g, result, false);
+    // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
+    // with bisections, a face split whose geodesics passed them left patches that were not disks. Where the
+    // result is invalid, refinement starts again from the G given, every step then also checked on all of G.
+    ValidationReport after = validate(g);
+    if (!after.valid) {
+        if (options.progress) options.progress("the result was not valid: starting again, checking all of G each step");
+        g = given;
+        result = given_result;
+        refine_given(g, result, true);
+        result.whole_checks = true;
+        after = validate(g);
     }
-
-    const ValidationReport after = validate(g);
     result.valid_after = after.valid;
     if (!after.valid) result.remaining = after.violations;
     result.angles_after = corner_angle_stats(g);

@@ -8,6 +8,7 @@
 #include <geotri/fine_mesh.h>
 #include <geotri/flip.h>
 #include <geotri/flip_to_delaunay.h>
+#include <geotri/refine.h>
 #include <geotri/trace.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
@@ -610,10 +611,20 @@ TEST(FlipToDelaunay, untangling_bisects_the_tangled_edges_where_nothing_else_hel
     flip_to_delaunay(again, one_thread);
     expect_same_polylines(again, g, "1 thread");
 
+    // Refinement of that G to 25 degrees met a face split that its local checks let through and that left patches
+    // that were not disks; it must still end valid (RefineResult::whole_checks says how).
+    RefineOptions to_25;
+    to_25.min_angle_deg = 25.0;
+    GeodesicTriangulation refined = g;
+    const RefineResult refinement = refine(refined, to_25);
+    EXPECT_TRUE(refinement.valid_after) << describe(validate(refined));
+    expect_valid_with_area(refined);
     std::cout << "[ flip     ] bundled joint at its coarsest: " << total(r.violations_before) << " -> "
               << total(r.violations_after) << " violations (" << total(stuck.violations_after)
               << " without bisections), " << r.untangle_bisections << " edges bisected, " << g.coarse().n_faces()
-              << " faces, " << r.seconds << " s\n";
+              << " faces, " << r.seconds << " s; refined to " << refined.coarse().n_faces() << " faces, "
+              << refinement.angles_after.min_deg << "°" << (refinement.whole_checks ? ", with whole checks" : "")
+              << "\n";
 }
 
 }  // namespace

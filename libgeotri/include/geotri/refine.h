@@ -73,6 +73,9 @@ struct RefineResult {
     bool second_attempt_kept = false;
     /// Why the second attempt stopped, where it threw NumericalError: the first result is returned then.
     std::string second_attempt_error;
+    /// The local checks let through a step that left G invalid: refinement started again from the G given, with
+    /// every step checked on all of G (validate(), the overlay included), and this is that result. Slower.
+    bool whole_checks = false;
     double longest_edge = 0.0;         ///< after
     CornerAngleStats angles_before, angles_after;
     double seconds = 0.0;              ///< both attempts, where there were two
