@@ -118,6 +118,7 @@ int run(tools::Tool& tool) {
         summary.add("untangle_collapses", r.untangle_collapses);
         summary.add("untangle_relocations", r.untangle_relocations);
         summary.add("untangle_bisections", r.untangle_bisections);
+        summary.add("untangle_kept_bisection_vertices", r.untangle_kept_bisection_vertices);
         summary.add("untangle_rejected", r.untangle_rejected);
         summary.add("untangle_refused", r.untangle_refused);
         summary.add("untangle_stuck", r.untangle_stuck);
@@ -155,6 +156,8 @@ int run(tools::Tool& tool) {
                      r.untangle_relocations, r.untangle_bisections,
                      r.untangle_rejected, r.untangle_refused,
                      r.untangle_stuck ? "; stuck: no operation lowers the violations left" : "");
+        if (r.untangle_kept_bisection_vertices)
+            std::fprintf(stderr, "%s: untangled a second time, keeping the vertices that bisections added\n", program);
         if (r.improve_skipped) {
             std::fprintf(stderr, "%s: improve: skipped, G is not valid\n", program);
         } else {

@@ -622,7 +622,8 @@ private:
 /// collapses judged after untangling, and only where `options.thorough` asks for them.
 /// `report` is validate(g) on entry and on exit.
 void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
-              ValidationReport& report, const std::vector<SurfacePoint>* focus = nullptr) {
+              ValidationReport& report, const std::vector<SurfacePoint>* focus = nullptr,
+              bool keep_bisection_vertices = false) {
     if (cheap_count(report) > 0) report = without_condition_4(std::move(report));
     Untangler untangler(g, report, options, result);
     // The violations that moves are sought for: all, or with a focus those that name a coarse vertex there.
@@ -707,11 +708,19 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
     };
     // A collapse removes a coarse vertex whose edges no flip or split could straighten out: its neighbours are
     // joined to the vertex it merges into by new shortest geodesics.
+    // The vertices that bisections added; with keep_bisection_vertices, collapses do not take them out again.
+    std::vector<SurfacePoint> bisection_vertices;
+    auto added_by_bisection = [&](int index) {
+        if (!keep_bisection_vertices) return false;
+        const SurfacePoint& p = g.location(OpenMesh::VertexHandle(index));
+        return std::find(bisection_vertices.begin(), bisection_vertices.end(), p) != bisection_vertices.end();
+    };
     auto try_collapses = [&] {
         std::vector<Move> moves;
         for (int index : candidate_vertices(g.coarse(), named))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index)))
             {
+                if (added_by_bisection(index)) continue;
                 auto run = [h](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                const CountViolations&) {
                     return collapse_unchecked(trial, h, propagation).done ? 1 : 0;
@@ -781,6 +790,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         std::vector<Move> moves;
         for (int index : candidate_vertices(g.coarse(), named))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) {
+                if (added_by_bisection(index)) continue;
                 auto run = [h, nested, &options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                                  const CountViolations&) {
                     const CollapseResult done = collapse_unchecked(trial, h, propagation);
@@ -843,7 +853,11 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
                 next.coarse().find_halfedge(OpenMesh::VertexHandle(a), OpenMesh::VertexHandle(b));
             if (!h.is_valid()) continue;
             try {
-                if (split_edge(next, next.coarse().edge_handle(h), 0.5, unchecked).done) ++splits;
+                const SplitResult split = split_edge(next, next.coarse().edge_handle(h), 0.5, unchecked);
+                if (split.done) {
+                    ++splits;
+                    bisection_vertices.push_back(next.location(split.vertex));
+                }
             } catch (const InvalidInput&) {
                 // G is unfit for it around there: that edge stays
             }
@@ -912,7 +926,29 @@ FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDela
     result.violations_before = report.violation_count;
     result.angles_before = corner_angle_stats(g);
 
-    if (options.untangle && !report.valid) untangle(g, options, result, report);
+    if (options.untangle && !report.valid) {
+        const GeodesicTriangulation given = g;
+        const FlipToDelaunayResult given_result = result;
+        const ValidationReport given_report = report;
+        untangle(g, options, result, report);
+        // The collapses after a round of bisections can take its vertices out again and leave G as tangled as it
+        // was (fertility at its coarsest); anchor and 42400-IDGH at theirs need some taken out. So where G is left
+        // invalid after bisections, untangling starts again from the G given with those vertices kept, and the
+        // result with fewer violations is kept (the first where they tie).
+        if (!report.valid && result.untangle_bisections > 0) {
+            GeodesicTriangulation again = given;
+            FlipToDelaunayResult again_result = given_result;
+            ValidationReport again_report = given_report;
+            untangle(again, options, again_result, again_report, nullptr, true);
+            again_result.untangle_kept_bisection_vertices = true;
+            auto sum = [](const std::array<int, 4>& counts) { return counts[0] + counts[1] + counts[2] + counts[3]; };
+            if (sum(again_report.violation_count) < sum(report.violation_count)) {
+                g = std::move(again);
+                result = again_result;
+                report = std::move(again_report);
+            }
+        }
+    }
 
     if (options.improve) {
         if (!report.valid) {

@@ -161,7 +161,8 @@ still_invalid_exits_three_and_is_written)
 
 last_resorts_mend_the_joint_by_default)
     # Stuck after every other move, the joint at its coarsest is mended by a collapse judged after untangling what
-    # it leaves, which runs by default, within its budget (3e7 windows of 1e8); --thorough 0 leaves it invalid.
+    # it leaves, which runs by default, within its budget (3e7 windows of 1e8); --thorough 0 leaves it invalid
+    # without the bisections that come after the last resorts.
     make_gtri "$joint" --coarsest
     run in_g.gtri -o out.gtri --json --quiet
     expect_rc 0
@@ -169,7 +170,7 @@ last_resorts_mend_the_joint_by_default)
     [ "$(json_value thorough_windows)" -gt 0 ] || fail "no work counted for the last resorts"
     [ "$(json_value thorough_budget_spent)" = "false" ] || fail "the budget is spent on the joint"
     check out.gtri || fail "geotri-check finds out.gtri invalid"
-    run in_g.gtri -o plain.gtri --thorough 0 --json --quiet
+    run in_g.gtri -o plain.gtri --thorough 0 --bisection-rounds 0 --json --quiet
     expect_rc 3
     [ "$(json_value thorough_windows)" = "0" ] || fail "--thorough 0 counts work for the last resorts"
     ;;

@@ -52,7 +52,8 @@ struct FlipToDelaunayOptions {
     /// is split at the middle of its polyline, whatever that does to the count, and untangling goes on: at most
     /// this many rounds. G is then too coarse there, its geodesics winding between handles that its vertices are
     /// too few to separate (stress/cheese.off, genus 133, at 1174 faces: valid after 374 bisections, in 4 minutes).
-    /// 0: never.
+    /// Where G is left invalid after bisections, untangling starts again from the G given with their vertices kept
+    /// from collapses (FlipToDelaunayResult::untangle_kept_bisection_vertices). 0: never.
     int bisection_rounds = 4;
     /// Improve: when the shortest c-d geodesic leaves the two patches, try the shortest path inside them.
     bool region_fallback = true;
@@ -95,6 +96,9 @@ struct FlipToDelaunayResult {
     int untangle_relocations = 0;
     /// Edges bisected, not judged by the count, where nothing else lowered it (at most a few rounds).
     int untangle_bisections = 0;
+    /// Untangling was left invalid after bisections and started again from the G given, with collapses that never
+    /// take out the vertices that bisections add; its result had fewer violations and is the one returned.
+    bool untangle_kept_bisection_vertices = false;
     int untangle_rejected = 0;   ///< moves tried that did not lower it (G kept as it was)
     int untangle_refused = 0;    ///< moves not possible there (not flippable, no geodesic, a refused split, ...)
     bool untangle_stuck = false; ///< untangling ended with violations left and no operation that lowers their count
