@@ -31,7 +31,7 @@ int run(tools::Tool& tool) {
                     "until no edge is longer than --max-length and G has --faces faces, then inserts circumcentres\n"
                     "until every corner angle is at least --min-angle, taking out an input vertex at a short edge\n"
                     "where that alone mends the corners around it. Every new edge is an exact geodesic, and G stays\n"
-                    "valid after every step.");
+                    "valid after every step (checked on all of G, in a second run, where a step's own checks missed).");
     tool.set_help_footer({"geotri-refine bone.flip.gtri -o bone.fine.gtri --min-angle 25",
                           "geotri-refine bone.flip.gtri -o bone.fine.gtri --faces 2000 --json"},
                          "the result is written, and it is valid", {"3  the result is written, but it is not valid (the input was not)"});

@@ -581,6 +581,9 @@ public:
         ValidationOptions no_overlay;
         no_overlay.overlay = false;
         report_ = detail::validate(g_, no_overlay, verdicts_);
+        // Without violations of conditions 1-3 that report says valid; the overlay decides condition 4, as for a
+        // trial (lowers_violations()), so that untangling goes on with what is left of it.
+        if (cheap_count(report_) == 0) add_overlay_check(g_, report_);
         recount();
         failed_.clear();
     }
@@ -852,12 +855,13 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
             const HalfedgeHandle h =
                 next.coarse().find_halfedge(OpenMesh::VertexHandle(a), OpenMesh::VertexHandle(b));
             if (!h.is_valid()) continue;
+            GeodesicTriangulation split_g = next;  // a split that throws may have changed what it was given
             try {
-                const SplitResult split = split_edge(next, next.coarse().edge_handle(h), 0.5, unchecked);
-                if (split.done) {
-                    ++splits;
-                    bisection_vertices.push_back(next.location(split.vertex));
-                }
+                const SplitResult split = split_edge(split_g, split_g.coarse().edge_handle(h), 0.5, unchecked);
+                if (!split.done) continue;
+                bisection_vertices.push_back(split_g.location(split.vertex));
+                next = std::move(split_g);
+                ++splits;
             } catch (const InvalidInput&) {
                 // G is unfit for it around there: that edge stays
             }
@@ -936,16 +940,20 @@ FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDela
         // invalid after bisections, untangling starts again from the G given with those vertices kept, and the
         // result with fewer violations is kept (the first where they tie).
         if (!report.valid && result.untangle_bisections > 0) {
+            if (options.progress) options.progress("untangling again, keeping the vertices that bisections add");
             GeodesicTriangulation again = given;
             FlipToDelaunayResult again_result = given_result;
             ValidationReport again_report = given_report;
-            untangle(again, options, again_result, again_report, nullptr, true);
-            again_result.untangle_kept_bisection_vertices = true;
-            auto sum = [](const std::array<int, 4>& counts) { return counts[0] + counts[1] + counts[2] + counts[3]; };
-            if (sum(again_report.violation_count) < sum(report.violation_count)) {
-                g = std::move(again);
-                result = again_result;
-                report = std::move(again_report);
+            try {
+                untangle(again, options, again_result, again_report, nullptr, true);
+                again_result.untangle_kept_bisection_vertices = true;
+                if (total(again_report) < total(report)) {
+                    g = std::move(again);
+                    result = again_result;
+                    report = std::move(again_report);
+                }
+            } catch (const NumericalError&) {
+                // The second untangling only tries to do better: where it meets numerical trouble, the first stands.
             }
         }
     }

@@ -890,10 +890,12 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
             }
             second_result.second_attempt = true;
             const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
-            const bool better = finished && (second_result.small_corners_left < counts.small_corners_left ||
-                                             (second_result.small_corners_left == counts.small_corners_left &&
-                                              smallest_corner_of(second, exempt_below) >
-                                                  smallest_corner_of(target, exempt_below)));
+            // Only a valid second result can be better: the local checks may have let an invalid one through.
+            const bool better = finished &&
+                                (second_result.small_corners_left < counts.small_corners_left ||
+                                 (second_result.small_corners_left == counts.small_corners_left &&
+                                  smallest_corner_of(second, exempt_below) > smallest_corner_of(target, exempt_below))) &&
+                                validate(second).valid;
             if (better) {
                 target = std::move(second);
                 counts = second_result;

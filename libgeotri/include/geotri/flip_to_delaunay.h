@@ -53,7 +53,8 @@ struct FlipToDelaunayOptions {
     /// this many rounds. G is then too coarse there, its geodesics winding between handles that its vertices are
     /// too few to separate (stress/cheese.off, genus 133, at 1174 faces: valid after 374 bisections, in 4 minutes).
     /// Where G is left invalid after bisections, untangling starts again from the G given with their vertices kept
-    /// from collapses (FlipToDelaunayResult::untangle_kept_bisection_vertices). 0: never.
+    /// from collapses (FlipToDelaunayResult::untangle_kept_bisection_vertices): the rounds, the operations and the
+    /// budget above then count once more. 0: never.
     int bisection_rounds = 4;
     /// Improve: when the shortest c-d geodesic leaves the two patches, try the shortest path inside them.
     bool region_fallback = true;
@@ -96,8 +97,9 @@ struct FlipToDelaunayResult {
     int untangle_relocations = 0;
     /// Edges bisected, not judged by the count, where nothing else lowered it (at most a few rounds).
     int untangle_bisections = 0;
-    /// Untangling was left invalid after bisections and started again from the G given, with collapses that never
-    /// take out the vertices that bisections add; its result had fewer violations and is the one returned.
+    /// Untangling was left invalid after bisections and started again from the G given, where its collapses (but
+    /// those inside the collapses judged after untangling) do not take out the vertices that bisections add; its
+    /// result had fewer violations and is the one returned.
     bool untangle_kept_bisection_vertices = false;
     int untangle_rejected = 0;   ///< moves tried that did not lower it (G kept as it was)
     int untangle_refused = 0;    ///< moves not possible there (not flippable, no geodesic, a refused split, ...)
@@ -130,8 +132,10 @@ struct FlipToDelaunayResult {
 /// vertices involved (split_fork(), singly, then as a chain), collapse them into a neighbour (collapse_edge()), or
 /// move them to a vertex of T nearby (relocate_vertex()); with a few violations left and nothing else helping, flip
 /// two edges of one face together, or move a vertex further; an operation is kept only when it strictly lowers the
-/// number of violations of conditions 1-3, or, with none left, that of condition 4; it stops when G is valid or no
-/// such operation is left. Trials run in parallel, and the first that helps in a fixed order is kept. Improve (only
+/// number of violations of conditions 1-3, or, with none left, that of condition 4; where no such operation is
+/// left, the edges that violations name are bisected (bisection_rounds) and it goes on, once more from the start
+/// with their vertices kept where that leaves G invalid; it stops when G is valid or nothing is left to try.
+/// Trials run in parallel, and the first that helps in a fixed order is kept. Improve (only
 /// on a valid G): sweeps over the edges, flipping by the criterion with plan_flip()'s local checks, until a sweep
 /// makes no flip or max_improve_passes is reached; it terminates because each flip strictly improves a finite
 /// order (criterion angle: the sorted vector of all corner angles), and it never makes a valid G invalid (a final

@@ -1,7 +1,8 @@
 #pragma once
 // Refinement of a valid G (issue 4): longest-edge bisection down to a geodesic edge length or a face count, then
-// Delaunay refinement to a minimum corner angle by inserting geodesic circumcentres. Every step is a split that
-// leaves G valid or is refused (split.h), and flips towards geodesic Delaunay follow each one.
+// Delaunay refinement to a minimum corner angle by inserting geodesic circumcentres. Every step is a split whose
+// local checks keep G valid or refuse it (split.h), and flips towards geodesic Delaunay follow each one; where those
+// checks miss (a face split once did), refine() starts again with every step checked on all of G.
 
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/geodesic_triangulation.h>
