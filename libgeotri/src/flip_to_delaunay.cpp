@@ -620,9 +620,11 @@ private:
 /// Untangles by single flips, where no flip helps by fork splits, then by edge collapses, then by moving vertices,
 /// and with a few violations left by pairs of flips and longer moves and (FlipToDelaunayOptions::thorough, within
 /// its budget of work) collapses judged after untangling, while they strictly lower the number of violations (see
-/// lowers_violations()), which bounds their number. With a `focus`, moves are sought only for the violations that
-/// name a coarse vertex at one of its locations, no plain collapses are tried, and of the last resorts only the
-/// collapses judged after untangling, and only where `options.thorough` asks for them.
+/// lowers_violations()), which bounds their number; where none of them helps, by bisecting the edges that the
+/// violations name (a bounded number of rounds, not judged; `keep_bisection_vertices`: collapses do not take the new
+/// vertices out). With a `focus`, moves are sought only for the violations that name a coarse vertex at one of its
+/// locations, no plain collapses are tried, of the last resorts only the collapses judged after untangling, and only
+/// where `options.thorough` asks for them, and nothing is bisected.
 /// `report` is validate(g) on entry and on exit.
 void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
               ValidationReport& report, const std::vector<SurfacePoint>* focus = nullptr,
@@ -709,8 +711,6 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         }
         return untangler.keep_first_better(moves, result.untangle_meeting_splits);
     };
-    // A collapse removes a coarse vertex whose edges no flip or split could straighten out: its neighbours are
-    // joined to the vertex it merges into by new shortest geodesics.
     // The vertices that bisections added; with keep_bisection_vertices, collapses do not take them out again.
     std::vector<SurfacePoint> bisection_vertices;
     auto added_by_bisection = [&](int index) {
@@ -718,6 +718,8 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
         const SurfacePoint& p = g.location(OpenMesh::VertexHandle(index));
         return std::find(bisection_vertices.begin(), bisection_vertices.end(), p) != bisection_vertices.end();
     };
+    // A collapse removes a coarse vertex whose edges no flip or split could straighten out: its neighbours are
+    // joined to the vertex it merges into by new shortest geodesics.
     auto try_collapses = [&] {
         std::vector<Move> moves;
         for (int index : candidate_vertices(g.coarse(), named))
