@@ -861,7 +861,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     // The G given, for a second attempt at the minimum angle and for the safety net (a copy shares the polylines).
     const RefineResult given_result = result;
     const GeodesicTriangulation given = g;
-    // Refines `target` (the G given), with a second attempt where that helps.
+    // Refines `target` (the G given), with a second attempt where that helps; returns validate() of the result.
     auto refine_given = [&](GeodesicTriangulation& target, RefineResult& counts, bool whole_checks) {
         auto run = [&options, whole_checks](GeodesicTriangulation& on, RefineResult& c, double curved_fraction) {
             Refiner refiner(on, options, c, curved_fraction, whole_checks);
@@ -891,30 +891,32 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
             second_result.second_attempt = true;
             const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
             // Only a valid second result can be better: the local checks may have let an invalid one through.
-            const bool better = finished &&
-                                (second_result.small_corners_left < counts.small_corners_left ||
-                                 (second_result.small_corners_left == counts.small_corners_left &&
-                                  smallest_corner_of(second, exempt_below) > smallest_corner_of(target, exempt_below))) &&
-                                validate(second).valid;
-            if (better) {
-                target = std::move(second);
-                counts = second_result;
-                counts.second_attempt_kept = true;
+            const bool fewer_left =
+                finished && (second_result.small_corners_left < counts.small_corners_left ||
+                             (second_result.small_corners_left == counts.small_corners_left &&
+                              smallest_corner_of(second, exempt_below) > smallest_corner_of(target, exempt_below)));
+            if (fewer_left) {
+                ValidationReport second_report = validate(second);
+                if (second_report.valid) {
+                    target = std::move(second);
+                    counts = second_result;
+                    counts.second_attempt_kept = true;
+                    return second_report;
+                }
             }
         }
+        return validate(target);
     };
-    refine_given(g, result, false);
+    ValidationReport after = refine_given(g, result, false);
     // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
     // with bisections, a face split whose geodesics passed them left patches that were not disks. Where the
     // result is invalid, refinement starts again from the G given, every step then also checked on all of G.
-    ValidationReport after = validate(g);
     if (!after.valid) {
         if (options.progress) options.progress("the result was not valid: starting again, checking all of G each step");
         g = given;
         result = given_result;
-        refine_given(g, result, true);
+        after = refine_given(g, result, true);
         result.whole_checks = true;
-        after = validate(g);
     }
     result.valid_after = after.valid;
     if (!after.valid) result.remaining = after.violations;
