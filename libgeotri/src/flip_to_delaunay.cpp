@@ -78,9 +78,10 @@ struct Evaluation {
 class Improver {
 public:
     /// Starts with every edge to evaluate, or only `edges` when given.
+    /// Every edge flipped is appended to `flipped` when given.
     Improver(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
-             const std::vector<EdgeHandle>* edges = nullptr)
-        : g_(g), options_(options), result_(result), dirty_(g.coarse().n_edges(), edges ? 0 : 1) {
+             const std::vector<EdgeHandle>* edges = nullptr, std::vector<EdgeHandle>* flipped = nullptr)
+        : g_(g), options_(options), result_(result), dirty_(g.coarse().n_edges(), edges ? 0 : 1), flipped_(flipped) {
         if (edges)
             for (EdgeHandle e : *edges) dirty_.at(static_cast<std::size_t>(e.idx())) = 1;
     }
@@ -155,6 +156,7 @@ public:
                 continue;
             }
             apply_flip(g_, found[k].plan);
+            if (flipped_) flipped_->push_back(EdgeHandle(edges[k]));
             ++flips;
             if (found[k].plan.in_region) ++result_.improve_region_flips;
             for (int x : quad) touched[static_cast<std::size_t>(x)] = dirty_[static_cast<std::size_t>(x)] = 1;
@@ -232,6 +234,7 @@ private:
     const FlipToDelaunayOptions& options_;
     FlipToDelaunayResult& result_;
     std::vector<unsigned char> dirty_;  ///< per edge: its faces changed since it was last evaluated
+    std::vector<EdgeHandle>* flipped_;  ///< where the flipped edges go, or null
 };
 
 /// How far untangling moves a coarse vertex: to the vertices of T within this many edges of it.
@@ -986,11 +989,12 @@ FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDela
 }
 
 void improve_around(GeodesicTriangulation& g, const std::vector<EdgeHandle>& edges,
-                    const FlipToDelaunayOptions& options, FlipToDelaunayResult& result) {
+                    const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
+                    std::vector<EdgeHandle>* flipped) {
     for (EdgeHandle e : edges)
         if (!e.is_valid() || static_cast<std::size_t>(e.idx()) >= g.coarse().n_edges())
             throw InvalidInput("improve_around: not an edge of the coarse mesh");
-    Improver(g, options, result, &edges).run();
+    Improver(g, options, result, &edges, flipped).run();
 }
 
 }  // namespace geotri

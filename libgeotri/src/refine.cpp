@@ -231,38 +231,18 @@ public:
         // Raising the minimum angle must never lower it: no split may make a corner below the smallest one now.
         keep_above_ = smallest_corner_of(g_);
         std::set<std::array<int, 3>> given_up;
-        std::vector<std::array<int, 3>> cached_vertices;
-        std::vector<double> cached_min;  // per face: its smallest corner that is not exempt (or infinity)
-        std::vector<double> cached_max;  // per face: its largest corner (or 0 for a face too small to refine)
+        FacesByCorner faces(*this);
         bool extended = options_.max_new_vertices > 0;  // a cap that the caller gave is never extended
         bool all_removable = false;
         while (true) {
             const CoarseMesh& coarse = g_.coarse();
-            cached_vertices.resize(coarse.n_faces(), {-1, -1, -1});
-            cached_min.resize(coarse.n_faces());
-            cached_max.resize(coarse.n_faces());
-            FaceHandle worst, widest;
-            std::size_t below = 0;
-            for (FaceHandle f : coarse.faces()) {
-                const std::size_t i = static_cast<std::size_t>(f.idx());
-                const std::array<int, 3> vertices = vertices_of(coarse, f);
-                if (vertices != cached_vertices[i]) {  // a split or a flip changed it
-                    cached_vertices[i] = vertices;
-                    const CornerRange range = corner_range(f);
-                    cached_min[i] = range.smallest;
-                    cached_max[i] = range.largest;
-                }
-                if (given_up.count(vertices)) continue;
-                if (cached_max[i] > k_max_corner &&
-                    (!widest.is_valid() || cached_max[i] > cached_max[static_cast<std::size_t>(widest.idx())]))
-                    widest = f;
-                if (cached_min[i] >= min_angle_) continue;
-                ++below;
-                if (!worst.is_valid() || cached_min[i] < cached_min[static_cast<std::size_t>(worst.idx())]) worst = f;
-            }
+            faces.update();
+            auto not_given_up = [&](int f) { return !given_up.count(vertices_of(coarse, FaceHandle(f))); };
+            const FaceHandle worst = faces.first_below(not_given_up), widest = faces.first_wide(not_given_up);
             // Nearly done at the default cap (k_nearly_done): once more as many.
             if (!extended && new_vertices_ >= budget_ &&
-                static_cast<double>(below) < k_nearly_done * static_cast<double>(coarse.n_faces())) {
+                static_cast<double>(faces.count_below(not_given_up)) <
+                    k_nearly_done * static_cast<double>(coarse.n_faces())) {
                 extended = true;
                 budget_ *= 2;
             }
@@ -345,6 +325,65 @@ private:
 
     /// The smallest corner of f that is not exempt, or infinity; infinity too for a face too small to refine.
     double smallest_corner(FaceHandle f) const { return corner_range(f).smallest; }
+
+    /// The faces below the minimum angle by their smallest corner that is not exempt, and those with a corner above
+    /// k_max_corner by their largest, each then by index: the worst and the widest, which raise_min_angle() takes
+    /// next, found without measuring every face of G at every step (which made refinement quadratic in G's size).
+    /// Kept up to date from the faces that the steps change (Refiner::changed_faces_).
+    class FacesByCorner {
+    public:
+        explicit FacesByCorner(Refiner& refiner) : refiner_(refiner) { refiner_.renumbered_ = true; }
+
+        /// Takes in the changes since the last call.
+        void update() {
+            if (refiner_.renumbered_) {
+                below_.clear();
+                wide_.clear();
+                ranges_.assign(refiner_.g_.coarse().n_faces(), CornerRange{});
+                for (FaceHandle f : refiner_.g_.coarse().faces()) measure(f.idx());
+            } else {
+                for (int f : refiner_.changed_faces_) measure(f);
+            }
+            refiner_.renumbered_ = false;
+            refiner_.changed_faces_.clear();
+        }
+
+        /// The first face below the angle for which `take(face index)` holds, or an invalid handle.
+        template <class Take>
+        FaceHandle first_below(Take take) const {
+            for (const auto& [corner, f] : below_)
+                if (take(f)) return FaceHandle(f);
+            return FaceHandle();
+        }
+        /// The first face with a corner above k_max_corner for which `take(face index)` holds, or an invalid handle.
+        template <class Take>
+        FaceHandle first_wide(Take take) const {
+            for (const auto& [corner, f] : wide_)
+                if (take(f)) return FaceHandle(f);
+            return FaceHandle();
+        }
+        template <class Take>
+        std::size_t count_below(Take take) const {
+            return static_cast<std::size_t>(
+                std::count_if(below_.begin(), below_.end(), [&](const auto& entry) { return take(entry.second); }));
+        }
+
+    private:
+        void measure(int f) {
+            const std::size_t i = static_cast<std::size_t>(f);
+            if (i >= ranges_.size()) ranges_.resize(i + 1);
+            below_.erase({ranges_[i].smallest, f});
+            wide_.erase({-ranges_[i].largest, f});
+            ranges_[i] = refiner_.corner_range(FaceHandle(f));
+            if (ranges_[i].smallest < refiner_.min_angle_) below_.emplace(ranges_[i].smallest, f);
+            if (ranges_[i].largest > k_max_corner) wide_.emplace(-ranges_[i].largest, f);
+        }
+
+        Refiner& refiner_;
+        std::vector<CornerRange> ranges_;       ///< per face, as last measured
+        std::set<std::pair<double, int>> below_;  ///< (smallest corner, face)
+        std::set<std::pair<double, int>> wide_;   ///< (minus the largest corner, face)
+    };
 
     /// Cuts f's corners above k_max_corner in two: splits the edge opposite each, the widest first, else inserts f's
     /// circumcentre; only where every corner that changes is at least `bar` (and the smallest corner when refinement
@@ -432,9 +471,12 @@ private:
     /// Without whole checks, true: the local checks of the operations are what keeps G valid.
     bool valid_whole(const GeodesicTriangulation& trial) const { return !whole_checks_ || validate(trial).valid; }
 
-    /// G becomes `next`, a changed copy.
-    void replace_g(GeodesicTriangulation&& next) {
+    /// G becomes `next`, a changed copy whose faces that differ from G's are `changed` (indices), or, where `next`
+    /// was renumbered (a removal collects its garbage), any of them.
+    void replace_g(GeodesicTriangulation&& next, const std::vector<int>* changed) {
         g_ = std::move(next);
+        if (!changed) renumbered_ = true;
+        else if (!renumbered_) changed_faces_.insert(changed_faces_.end(), changed->begin(), changed->end());
     }
 
     /// Does `split` (one of split_edge() or split_face() on the G it is given) on a copy of G, then the flips around
@@ -454,7 +496,10 @@ private:
             return Tried::refused_split;
         }
         FlipToDelaunayResult flips;
-        if (options_.flip) improve_around(trial, link_edges(trial.coarse(), done.vertex), flip_options_, flips);
+        std::vector<EdgeHandle> flipped;
+        if (options_.flip)
+            improve_around(trial, link_edges(trial.coarse(), done.vertex), flip_options_, flips, &flipped);
+        const std::vector<int> changed = changed_faces(trial, done.vertex, flipped);
         // The flips after the split can reach beyond the new vertex's faces: the smallest corner of all of G must
         // stay above keep_above_ too.
         double shortest_new = std::numeric_limits<double>::infinity();
@@ -462,31 +507,63 @@ private:
             shortest_new = std::min(shortest_new, trial.length(trial.coarse().edge_handle(h)));
         const double changed_bar = std::max(keep_above_, changed_floor);
         if (shortest_new < min_length || smallest_corner_around(trial, done.vertex) < floor ||
-            (changed_bar > 0.0 && smallest_changed_corner(trial) < changed_bar) || !valid_whole(trial)) {
+            (changed_bar > 0.0 && smallest_corner_in(trial, changed) < changed_bar) || !valid_whole(trial)) {
             ++result_.refused_splits;
             return Tried::refused_shape;
         }
-        replace_g(std::move(trial));
+        replace_g(std::move(trial), &changed);
         ++counter;
         ++new_vertices_;
         result_.flips += flips.improve_flips;
         return Tried::kept;
     }
 
-    /// The smallest corner of the faces of `trial` (a changed copy of G) that G does not have: those whose index
-    /// is new or now holds other vertices. A face with the same vertices has the same edges (flips never double
-    /// an edge), so the same corners; measuring only the others saves most of the corner angles on a large G.
-    double smallest_changed_corner(const GeodesicTriangulation& trial) const {
+    /// Whether face f of `trial` (a changed copy of G) is one that G does not have: its index is new or now holds
+    /// other vertices. A face with the same vertices has the same edges (flips never double an edge), so the same
+    /// corners; measuring only the others saves most of the corner angles on a large G.
+    bool is_changed(const GeodesicTriangulation& trial, FaceHandle f) const {
         const CoarseMesh& before = g_.coarse();
+        return static_cast<std::size_t>(f.idx()) >= before.n_faces() || before.status(f).deleted() ||
+               vertices_of(before, f) != vertices_of(trial.coarse(), f);
+    }
+
+    /// The changed faces (is_changed()) of `trial`, G split at `vertex` and then flipped at `flipped`: only faces
+    /// that meet the new vertex or a flipped edge can be (flips keep the handles of their edge's two faces), so
+    /// they are found without a pass over G, whose cost grew with G at every step.
+    std::vector<int> changed_faces(const GeodesicTriangulation& trial, VertexHandle vertex,
+                                   const std::vector<EdgeHandle>& flipped) const {
+        const CoarseMesh& coarse = trial.coarse();
+        std::vector<int> faces;
+        for (FaceHandle f : coarse.vf_range(vertex)) faces.push_back(f.idx());
+        for (EdgeHandle e : flipped)
+            for (int side = 0; side < 2; ++side) {
+                const FaceHandle f = coarse.face_handle(coarse.halfedge_handle(e, side));
+                if (f.is_valid()) faces.push_back(f.idx());
+            }
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+        faces.erase(std::remove_if(faces.begin(), faces.end(),
+                                   [&](int f) { return !is_changed(trial, FaceHandle(f)); }),
+                    faces.end());
+        return faces;
+    }
+
+    /// The smallest corner of `faces` (indices) in `trial`, or infinity.
+    static double smallest_corner_in(const GeodesicTriangulation& trial, const std::vector<int>& faces) {
         double smallest = std::numeric_limits<double>::infinity();
-        for (FaceHandle f : trial.coarse().faces()) {
-            if (static_cast<std::size_t>(f.idx()) < before.n_faces() && !before.status(f).deleted() &&
-                vertices_of(before, f) == vertices_of(trial.coarse(), f))
-                continue;
-            for (HalfedgeHandle h : halfedges_of(trial.coarse(), f))
+        for (int f : faces)
+            for (HalfedgeHandle h : halfedges_of(trial.coarse(), FaceHandle(f)))
                 smallest = std::min(smallest, corner_angle(trial, h));
-        }
         return smallest;
+    }
+
+    /// The smallest corner of the changed faces of `trial`, found by a pass over all of it: for a removal, whose
+    /// garbage collection renumbers G.
+    double smallest_changed_corner(const GeodesicTriangulation& trial) const {
+        std::vector<int> faces;
+        for (FaceHandle f : trial.coarse().faces())
+            if (is_changed(trial, f)) faces.push_back(f.idx());
+        return smallest_corner_in(trial, faces);
     }
 
     static double smallest_corner_around(const GeodesicTriangulation& g, VertexHandle v) {
@@ -627,7 +704,7 @@ private:
             best_flips = flips.improve_flips;
         }
         if (!best) return false;
-        replace_g(std::move(*best));
+        replace_g(std::move(*best), nullptr);
         ++result_.removed_vertices;
         result_.flips += best_flips;
         return true;
@@ -837,6 +914,9 @@ private:
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;
     bool whole_checks_ = false;
+    /// The faces of G that changed since raise_min_angle() last looked (indices), or, when renumbered_, any.
+    std::vector<int> changed_faces_;
+    bool renumbered_ = false;
 };
 
 }  // namespace

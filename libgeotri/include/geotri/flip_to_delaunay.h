@@ -148,8 +148,11 @@ FlipToDelaunayResult flip_to_delaunay(GeodesicTriangulation& g, const FlipToDela
 
 /// Improve only, starting from `edges` and going on with the edges that their flips change, on a G that the caller
 /// knows to be valid: no untangling and no validate(), so that it costs what the flips around `edges` cost. For
-/// operations that change G locally (refinement). Adds its counts to `result`'s improve fields.
+/// operations that change G locally (refinement). Adds its counts to `result`'s improve fields, and appends every
+/// edge that it flips to `flipped` when given (flips keep the edge's handle), so that the caller can tell which
+/// faces changed without a pass over G.
 void improve_around(GeodesicTriangulation& g, const std::vector<OpenMesh::EdgeHandle>& edges,
-                    const FlipToDelaunayOptions& options, FlipToDelaunayResult& result);
+                    const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
+                    std::vector<OpenMesh::EdgeHandle>* flipped = nullptr);
 
 }  // namespace geotri
