@@ -6,6 +6,7 @@
 #include <geotri/tangent_angles.h>
 
 #include "local_checks.h"
+#include "spokes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,22 +25,7 @@ using OpenMesh::VertexHandle;
 
 namespace {
 
-constexpr double k_two_pi = 6.28318530717958647692;
-
-/// A new geodesic from the new vertex to an existing coarse vertex, and what bounds it.
-struct Spoke {
-    VertexHandle to;
-    int patch = -1;  ///< the coarse face whose (old) patch it must run in
-    /// At the new vertex, when `has_wedge`: it must leave strictly inside the corner from wedge_from to wedge_to.
-    bool has_wedge = false;
-    double wedge_from = 0.0, wedge_to = 0.0;
-    /// At `to`: it must arrive strictly inside the corner from the geodesic of corner_from counter-clockwise to that
-    /// of corner_to (both halfedges leave `to`).
-    HalfedgeHandle corner_from, corner_to;
-    std::vector<detail::BoundingPath> around;  ///< the polylines it must not meet
-    Polyline path;
-    bool in_region = false;
-};
+using detail::Spoke;
 
 /// The arc-length position of `fraction` on `line`: the segment index i and the parameter u in [0, 1] on it.
 std::pair<std::size_t, double> locate_along(const Mesh& mesh, const Polyline& line, double fraction) {
@@ -68,76 +54,6 @@ SurfacePoint point_on_segment(const Mesh& mesh, const SurfacePoint& p, const Sur
     std::array<double, 3> b{};
     for (std::size_t k = 0; k < 3; ++k) b[k] = (1.0 - u) * bp[k] + u * bq[k];
     return mesh.canonical(SurfacePoint::in_face(f, b));
-}
-
-double cone_of(const GeodesicTriangulation& g, VertexHandle v) { return cone_angle(g.fine().mesh, g.location(v)); }
-
-/// Empty when `path` is acceptable for `spoke` from a new vertex at a point of cone angle `theta`, else why not.
-std::string check_spoke(const GeodesicTriangulation& g, const Spoke& spoke, const Polyline& path, double theta) {
-    const Mesh& mesh = g.fine().mesh;
-    const std::string name = "the geodesic to coarse vertex " + std::to_string(spoke.to.idx());
-    const std::size_t n = path.size();
-    if (n < 2) return name + " is empty";
-    const std::string bend = detail::straightness_defect(mesh, path);
-    if (!bend.empty()) return name + " " + bend;
-    if (spoke.has_wedge &&
-        !detail::split_corner(spoke.wedge_from, polar_angle(mesh, path[0], path[1]), spoke.wedge_to, theta).ok)
-        return name + " does not leave the new vertex inside the patch";
-    if (!detail::split_corner(detail::start_direction(g, spoke.corner_from), polar_angle(mesh, path[n - 1], path[n - 2]),
-                              detail::start_direction(g, spoke.corner_to), cone_of(g, spoke.to))
-             .ok)
-        return name + " does not reach it inside the corner of the patch";
-    const std::string meeting = detail::first_meeting(mesh, path, spoke.around);
-    return meeting.empty() ? meeting : name + ": " + meeting;
-}
-
-/// Finds the geodesics of `spokes` from `from`: the shortest geodesics on T, then, when `checked`, for those that
-/// fail check_spoke(), the shortest paths inside their patch. Returns why one could not be found, or empty.
-/// Unchecked, the spokes are the shortest geodesics whatever they do: for fork splits, which untangling judges on
-/// all of G.
-std::string find_spokes(const GeodesicTriangulation& g, const SurfacePoint& from, std::vector<Spoke>& spokes,
-                        const SplitOptions& options, bool checked) {
-    if (options.propagated && !options.propagation)
-        throw InvalidInput("split: SplitOptions::propagated without a propagation");
-    const Mesh& mesh = g.fine().mesh;
-    const double theta = cone_angle(mesh, from);
-    std::unique_ptr<geodesic::ExactGeodesic> own;
-    geodesic::ExactGeodesic* propagation = options.propagation;
-    if (!propagation) {
-        own = std::make_unique<geodesic::ExactGeodesic>(mesh);
-        propagation = own.get();
-    }
-    if (!options.propagated) {
-        geodesic::PropagationOptions propagation_options;
-        for (const Spoke& s : spokes) propagation_options.stop_points.push_back(g.location(s.to));
-        propagation_options.goal_directed = true;
-        propagation->propagate({from}, propagation_options);
-    }
-
-    for (Spoke& s : spokes) {
-        s.path = propagation->shortest_path(g.location(s.to));
-        if (!checked) {
-            if (s.path.size() < 2) return "no geodesic to coarse vertex " + std::to_string(s.to.idx());
-            continue;
-        }
-        std::string why = check_spoke(g, s, s.path, theta);
-        if (why.empty()) continue;
-        if (!options.region_fallback) return why;
-        PatchRegion::Path inside;
-        try {
-            const PatchRegion region = options.overlay ? PatchRegion(g, *options.overlay, {s.patch})
-                                                       : PatchRegion(g, {s.patch});
-            inside = region.shortest_path(from, g.location(s.to));
-        } catch (const InvalidInput& e) {
-            return why + "; inside the patch: " + e.what();
-        }
-        if (inside.polyline.empty()) return why + "; inside the patch: " + inside.failure;
-        const std::string why_inside = check_spoke(g, s, inside.polyline, theta);
-        if (!why_inside.empty()) return why + "; inside the patch: " + why_inside;
-        s.path = std::move(inside.polyline);
-        s.in_region = true;
-    }
-    return {};
 }
 
 /// Does a split that find_spokes() accepted: a new coarse vertex at `at`, joined to the mesh by
@@ -249,7 +165,7 @@ SplitResult split_edge_on_segment(GeodesicTriangulation& g, EdgeHandle e, std::s
         spoke(c, ab, towards_b, towards_a, ca, coarse.opposite_halfedge_handle(bc), "c-a", "c-b"),
         spoke(d, ba, towards_a, towards_b, db, coarse.opposite_halfedge_handle(ad), "d-b", "d-a")};
 
-    const std::string why = find_spokes(g, m, spokes, options, options.checked);
+    const std::string why = detail::find_spokes(g, m, spokes, options, options.checked);
     if (!why.empty()) {
         result.reason = name + ": " + why;
         return result;
@@ -302,26 +218,9 @@ SplitResult split_face(GeodesicTriangulation& g, FaceHandle f, const SurfacePoin
         s.around = {{g.path(xy), 1, "x-y"}, {g.path(s.corner_to), 1, "x-z"}, {g.path(yz), -1, "y-z"}};
         spokes.push_back(std::move(s));
     }
-    std::string why = find_spokes(g, point, spokes, options, true);
+    std::string why = detail::find_spokes(g, point, spokes, options, true);
     // The three geodesics leave p in the counter-clockwise order of f's corners, and apart from each other.
-    if (why.empty()) {
-        const double theta = cone_angle(mesh, point);
-        std::array<double, 3> out{};
-        for (std::size_t k = 0; k < 3; ++k) out[k] = polar_angle(mesh, spokes[k].path[0], spokes[k].path[1]);
-        double turn = 0.0, smallest = k_two_pi;
-        for (std::size_t k = 0; k < 3; ++k) {
-            const double angle = ccw_angle(out[k], out[(k + 1) % 3], theta);
-            turn += angle;
-            smallest = std::min(smallest, angle);
-        }
-        if (!(smallest > detail::k_min_new_corner) || std::abs(turn - theta) > 1e-9 * theta)
-            why = "the new geodesics do not leave the split point in the order of the face's corners";
-    }
-    for (std::size_t k = 0; k < 3 && why.empty(); ++k)
-        for (std::size_t j = k + 1; j < 3 && why.empty(); ++j) {
-            const std::string meeting = detail::first_meeting(mesh, spokes[k].path, {{spokes[j].path, 0, "p-y"}});
-            if (!meeting.empty()) why = "two new geodesics meet: " + meeting;
-        }
+    if (why.empty()) why = detail::spokes_apart(mesh, point, spokes);
     if (!why.empty()) {
         result.reason = name + ": " + why;
         return result;
@@ -404,7 +303,7 @@ SplitResult split_fork(GeodesicTriangulation& g, const Fork& fork, const SplitOp
     std::vector<Spoke> spokes(2);
     spokes[0].to = before;
     spokes[1].to = after;
-    const std::string why = find_spokes(g, at, spokes, options, false);
+    const std::string why = detail::find_spokes(g, at, spokes, options, false);
     if (!why.empty()) {
         result.reason = name + ": " + why;
         return result;
