@@ -29,8 +29,9 @@ int run(tools::Tool& tool) {
     CLI::App& app = tool.app;
     app.description("Refines a valid geodesic triangulation (.gtri): splits the longest edge at its geodesic midpoint\n"
                     "until no edge is longer than --max-length and G has --faces faces, then inserts circumcentres\n"
-                    "until every corner angle is at least --min-angle, taking out an input vertex at a short edge\n"
-                    "where that alone mends the corners around it. Every new edge is an exact geodesic, and G stays\n"
+                    "until every corner angle is at least --min-angle, first moving a vertex of the worst triangle to\n"
+                    "the centre of its star, or taking out an input vertex at a short edge, where that mends the\n"
+                    "corners around it. Every new edge is an exact geodesic, and G stays\n"
                     "valid after every step (checked on all of G, in a second run, where a step's own checks missed).");
     tool.set_help_footer({"geotri-refine bone.flip.gtri -o bone.fine.gtri --min-angle 25",
                           "geotri-refine bone.flip.gtri -o bone.fine.gtri --faces 2000 --json"},
@@ -64,8 +65,9 @@ int run(tools::Tool& tool) {
     app.add_flag("--no-flip", no_flip, "Do not flip towards geodesic Delaunay around new vertices");
     bool keep_vertices = false;
     app.add_flag("--keep-vertices", keep_vertices,
-                 "Never take out a vertex of the input G (by default --min-angle may take out one at the end of a\n"
-                 "short edge, reconnecting its star, when every corner around it is then at least the angle)");
+                 "Never take out or move a vertex of the input G (by default --min-angle may take out one at the\n"
+                 "end of a short edge, reconnecting its star, when every corner around it is then at least the\n"
+                 "angle, and move one to the centre of its star where that raises the corners around it)");
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
         ->check(CLI::ExistingFile);
     tool.parse();
@@ -117,6 +119,7 @@ int run(tools::Tool& tool) {
         summary.add("face_splits", r.face_splits);
         summary.add("refused_splits", r.refused_splits);
         summary.add("removed_vertices", r.removed_vertices);
+        summary.add("moved_vertices", r.moved_vertices);
         summary.add("flips", r.flips);
         summary.add("exempt_corners", r.exempt_corners);
         summary.add("small_corners_left", r.small_corners_left);
@@ -125,6 +128,8 @@ int run(tools::Tool& tool) {
         summary.add("second_attempt", r.second_attempt);
         summary.add("second_attempt_kept", r.second_attempt_kept);
         summary.add("second_attempt_error", r.second_attempt_error);
+        summary.add("without_moves_tried", r.without_moves_tried);
+        summary.add("without_moves_kept", r.without_moves_kept);
         summary.add("whole_checks", r.whole_checks);
         summary.add("longest_edge", r.longest_edge);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);
@@ -137,10 +142,10 @@ int run(tools::Tool& tool) {
     if (tool.verbose()) {
         const char* program = tool.program().c_str();
         std::fprintf(stderr,
-                     "%s: %zu -> %zu faces: %d edge splits, %d circumcentres, %d vertices taken out, %d flips, %d "
-                     "splits refused%s\n",
+                     "%s: %zu -> %zu faces: %d edge splits, %d circumcentres, %d vertices taken out, %d moved, %d "
+                     "flips, %d splits refused%s\n",
                      program, faces_before, g.coarse().n_faces(), r.edge_splits, r.face_splits, r.removed_vertices,
-                     r.flips, r.refused_splits,
+                     r.moved_vertices, r.flips, r.refused_splits,
                      r.vertex_cap_reached ? "; stopped at the vertex cap (--max-new-vertices)" : "");
         std::fprintf(stderr, "%s: corner angles: min %.4g -> %.4g, mean %.4g -> %.4g degrees; longest edge %.6g\n",
                      program, r.angles_before.min_deg, r.angles_after.min_deg, r.angles_before.mean_deg,
@@ -163,6 +168,10 @@ int run(tools::Tool& tool) {
                                  "of T that is not flat treated as curved; %s result kept%s\n",
                          program, r.second_attempt_kept ? "the second" : "the first", why.c_str());
         }
+        if (r.without_moves_tried)
+            std::fprintf(stderr, "%s: refinement with vertex moves gave up on some triangles and refined again without "
+                                 "them; the result %s kept\n",
+                         program, r.without_moves_kept ? "without moves" : "with moves");
         if (r.wide_corners_left > 0)
             std::fprintf(stderr, "%s: %d corners above 180 degrees left\n", program, r.wide_corners_left);
         if (r.whole_checks)

@@ -4,11 +4,13 @@
 #include <geotri/propagation_pool.h>
 #include <geotri/reconnect.h>
 #include <geotri/refine.h>
+#include <geotri/relocate.h>
 #include <geotri/split.h>
 #include <geotri/straight_geodesic.h>
 #include <geotri/tangent_angles.h>
 
 #include "local_checks.h"
+#include "parallel_propagations.h"
 #include "patch_location.h"
 #include "plane_segments.h"
 #include "polygon_triangulation.h"
@@ -56,6 +58,14 @@ constexpr double k_max_corner = k_pi;
 // (armadillo at 25 degrees: 5 instead of 80); the scans that cascade reach the cap with 10-15% of their faces
 // below it, and stop there.
 constexpr double k_nearly_done = 0.05;
+// A vertex is moved (Refiner::move_a_vertex_of) only where that raises the smallest corner around it by more than
+// this (radians): moves that gain less cost a propagation each for nearly nothing.
+constexpr double k_min_move_gain = 1e-3;
+// Where vertex moves leave at most this many corners below the angle, refinement also tries without them (refine()).
+constexpr int k_few_corners_left = 4;
+// At most this many moves per vertex that the cap lets refinement add: each move raises the smallest corner of the
+// faces it changes, but positions are not finitely many, so that alone does not bound them.
+constexpr int k_moves_per_new_vertex = 2;
 // A circumcentre farther than this times the triangle's longest edge is not inserted.
 constexpr double k_max_radius_ratio = 4.0;
 // How many fine faces the search for a curved vertex near a circumcentre may look at.
@@ -270,6 +280,7 @@ public:
                 given_up.clear();  // the coarse mesh was renumbered
                 continue;
             }
+            if (options_.move_vertices && may_move() && move_a_vertex_of(worst, given_up, MoveGoal{})) continue;
             if (!refine_face(worst)) given_up.insert(vertices_of(coarse, worst));
             progress("angle refinement");
         }
@@ -408,7 +419,12 @@ private:
             }
         }
         const std::optional<Centre> centre = circumcentre(f);
-        return centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length, floor);
+        if (centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length, floor)) return true;
+        // Else a vertex of f moved, where that narrows the widest corner of the faces it changes and keeps their
+        // corners at least the floor (or what they were): the moves that raise the minimum angle may open such
+        // corners, and the splits above then be refused (the lumbar spine at 25 degrees).
+        std::set<std::array<int, 3>> none;
+        return options_.move_vertices && may_move() && move_a_vertex_of(f, none, MoveGoal{true, floor});
     }
 
     /// Where refinement stops with triangles below the minimum angle (at the vertex cap, or given up), the corners
@@ -555,6 +571,15 @@ private:
             for (HalfedgeHandle h : halfedges_of(trial.coarse(), FaceHandle(f)))
                 smallest = std::min(smallest, corner_angle(trial, h));
         return smallest;
+    }
+
+    /// The largest corner of `faces` (indices) in `trial`, or 0.
+    static double largest_corner_in(const GeodesicTriangulation& trial, const std::vector<int>& faces) {
+        double largest = 0.0;
+        for (int f : faces)
+            for (HalfedgeHandle h : halfedges_of(trial.coarse(), FaceHandle(f)))
+                largest = std::max(largest, corner_angle(trial, h));
+        return largest;
     }
 
     /// The smallest corner of the changed faces of `trial`, found by a pass over all of it: for a removal, whose
@@ -710,13 +735,147 @@ private:
         return true;
     }
 
+    /// What a move must do: raise the smallest corner of the faces it changes by more than k_min_move_gain, or,
+    /// with `narrow`, lower their widest corner by as much, keeping their corners at least `floor` (or what they
+    /// were). Either way no corner may fall below keep_above_.
+    struct MoveGoal {
+        bool narrow = false;
+        double floor = 0.0;
+    };
+    struct MoveCandidate {
+        VertexHandle vertex;
+        std::vector<double> key;  ///< star_key() before the move
+        std::optional<GeodesicTriangulation> moved;  ///< set where the move is one to keep
+        std::vector<int> changed;  ///< the faces that the move and its flips changed
+        double score = 0.0;        ///< the higher the better: their smallest corner after, or minus the widest
+        int flips = 0;
+    };
+
+    /// Moves a vertex of f to the centroid of its star (star_centroid()), then flips around it: of f's three, the
+    /// move that meets `goal` and raises the smallest corner of the faces that it and its flips change the most (or,
+    /// to narrow, lowers their widest the most). On a bumpy T, circumcentres cascade into ever smaller
+    /// triangles whose corners the bumps distort; moving a vertex mends a corner without making a triangle.
+    /// Vertices at curved points of T stay, and so do those of the G given with RefineOptions::remove_vertices
+    /// off. Each move raises the smallest corner of the faces it changes and leaves the others as they are. The
+    /// three are tried in parallel (each with its flips on one thread), and the choice does not depend on the
+    /// thread count. The faces that the move changes leave `given_up`: their corners are others now.
+    bool move_a_vertex_of(FaceHandle f, std::set<std::array<int, 3>>& given_up, const MoveGoal& goal) {
+        std::vector<MoveCandidate> candidates;
+        for (VertexHandle v : g_.coarse().fv_range(f)) {
+            if (curved(v) || (!options_.remove_vertices &&
+                              std::find(given_.begin(), given_.end(), g_.location(v)) != given_.end()))
+                continue;
+            // A star whose move failed before, and that has not changed since, fails again.
+            std::vector<double> key = star_key(v);
+            if (goal.narrow || !failed_moves_.count(key)) candidates.push_back({v, std::move(key), {}, {}, 0.0, 0});
+        }
+        detail::for_each_with_propagation(
+            g_.fine().mesh, candidates.size(), flip_options_.threads,
+            [&](std::size_t k, geodesic::ExactGeodesic& propagation) { try_move(candidates[k], propagation, goal); },
+            &propagation_, &pool_);
+        MoveCandidate* best = nullptr;
+        for (MoveCandidate& c : candidates) {
+            if (!c.moved && !goal.narrow) failed_moves_.insert(c.key);
+            else if (c.moved && (!best || c.score > best->score)) best = &c;
+        }
+        if (!best) return false;
+        for (int x : best->changed) given_up.erase(vertices_of(best->moved->coarse(), FaceHandle(x)));
+        replace_g(std::move(*best->moved), &best->changed);
+        ++result_.moved_vertices;
+        result_.flips += best->flips;
+        return true;
+    }
+
+    bool may_move() const { return result_.moved_vertices / k_moves_per_new_vertex < budget_; }
+
+    /// One move of move_a_vertex_of(), on a copy of G, with `propagation` for its geodesics and flips.
+    void try_move(MoveCandidate& c, geodesic::ExactGeodesic& propagation, const MoveGoal& goal) const {
+        const std::optional<SurfacePoint> target = star_centroid(c.vertex);
+        if (!target) return;
+        GeodesicTriangulation trial = g_;
+        if (!relocate_vertex_in_star(trial, c.vertex, *target, &propagation).done) return;
+        const CoarseMesh& coarse = trial.coarse();
+        FlipToDelaunayResult flips;
+        std::vector<EdgeHandle> flipped;
+        if (options_.flip) {
+            std::vector<EdgeHandle> edges = link_edges(coarse, c.vertex);
+            for (HalfedgeHandle h : coarse.voh_range(c.vertex)) edges.push_back(coarse.edge_handle(h));
+            FlipToDelaunayOptions one_thread = flip_options_;
+            one_thread.threads = 1;
+            one_thread.propagation = &propagation;
+            one_thread.propagations = nullptr;
+            improve_around(trial, edges, one_thread, flips, &flipped);
+        }
+        // Every face at the vertex changed (its corners did, though not its vertices), and those of the flipped
+        // edges.
+        std::vector<int> changed;
+        for (FaceHandle x : coarse.vf_range(c.vertex)) changed.push_back(x.idx());
+        for (EdgeHandle e : flipped)
+            for (int side = 0; side < 2; ++side)
+                changed.push_back(coarse.face_handle(coarse.halfedge_handle(e, side)).idx());
+        std::sort(changed.begin(), changed.end());
+        changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+        const double smallest = smallest_corner_in(trial, changed), before = smallest_corner_in(g_, changed);
+        if (smallest < keep_above_) return;
+        if (goal.narrow) {
+            const double widest = largest_corner_in(trial, changed);
+            if (!(widest < largest_corner_in(g_, changed) - k_min_move_gain) ||
+                smallest < std::min(goal.floor, before))
+                return;
+            c.score = -widest;
+        } else {
+            if (!(smallest - before > k_min_move_gain)) return;
+            c.score = smallest;
+        }
+        if (!valid_whole(trial)) return;
+        c.moved.emplace(std::move(trial));
+        c.changed = std::move(changed);
+        c.flips = flips.improve_flips;
+    }
+
+    /// Where smoothing moves v: the centroid of v's star laid out in the plane around v (its edges' lengths, its
+    /// corners at v scaled to sum to 2π), found on T by walking straight from v; none when the layout folds over.
+    std::optional<SurfacePoint> star_centroid(VertexHandle v) const {
+        const geodesic::Mesh& mesh = g_.fine().mesh;
+        const double theta = cone_angle(mesh, g_.location(v));
+        std::vector<Eigen::Vector2d> ring;
+        double first = 0.0;
+        for (HalfedgeHandle h : g_.coarse().voh_ccw_range(v)) {
+            const double direction = detail::start_direction(g_, h);
+            if (ring.empty()) first = direction;
+            const double angle = ccw_angle(first, direction, theta) * 2.0 * k_pi / theta;
+            const double length = g_.length(g_.coarse().edge_handle(h));
+            ring.emplace_back(length * std::cos(angle), length * std::sin(angle));
+        }
+        Eigen::Vector2d weighted(0.0, 0.0);
+        double area = 0.0;
+        for (std::size_t i = 0; i < ring.size(); ++i) {
+            const Eigen::Vector2d& p = ring[i];
+            const Eigen::Vector2d& q = ring[(i + 1) % ring.size()];
+            const double twice = detail::cross(p, q);
+            if (!(twice > 0.0)) return std::nullopt;
+            weighted += twice * (p + q) / 3.0;
+            area += twice;
+        }
+        const Eigen::Vector2d centroid = weighted / area;
+        const double distance = centroid.norm();
+        if (!(distance > 0.0)) return std::nullopt;
+        double direction = std::atan2(centroid.y(), centroid.x());
+        if (direction < 0.0) direction += 2.0 * k_pi;
+        const StraightGeodesicResult walk = trace_straight_geodesic(
+            mesh, g_.location(v), std::fmod(first + direction * theta / (2.0 * k_pi), theta), distance);
+        if (walk.stopped_at_boundary) return std::nullopt;
+        return walk.end;
+    }
+
     /// v's star as the locations of v and of its ring, counter-clockwise: a key that survives renumbering.
     std::vector<double> star_key(VertexHandle v) const {
         std::vector<double> key;
         auto add = [&key](const SurfacePoint& p) {
-            key.insert(key.end(), {static_cast<double>(p.kind), static_cast<double>(p.vertex),
-                                   static_cast<double>(p.edge_v0), static_cast<double>(p.edge_v1), p.t,
-                                   static_cast<double>(p.face), p.bary[0], p.bary[1], p.bary[2]});
+            const std::array<double, 9> fields{static_cast<double>(p.kind), static_cast<double>(p.vertex),
+                                               static_cast<double>(p.edge_v0), static_cast<double>(p.edge_v1), p.t,
+                                               static_cast<double>(p.face), p.bary[0], p.bary[1], p.bary[2]};
+            for (double x : fields) key.push_back(x);
         };
         add(g_.location(v));
         for (VertexHandle u : g_.coarse().vv_ccw_range(v)) add(g_.location(u));
@@ -910,6 +1069,7 @@ private:
     };
     std::vector<ShortEdge> short_given_edges_;  ///< the edges of the G given shorter than min_edge_
     std::set<std::vector<double>> failed_stars_;  ///< star_key() of the removals tried without success
+    std::set<std::vector<double>> failed_moves_;  ///< star_key() of the moves tried without success
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;
@@ -942,9 +1102,10 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     const RefineResult given_result = result;
     const GeodesicTriangulation given = g;
     // Refines `target` (the G given), with a second attempt where that helps; returns validate() of the result.
-    auto refine_given = [&](GeodesicTriangulation& target, RefineResult& counts, bool whole_checks) {
-        auto run = [&options, whole_checks](GeodesicTriangulation& on, RefineResult& c, double curved_fraction) {
-            Refiner refiner(on, options, c, curved_fraction, whole_checks);
+    auto refine_given = [&](GeodesicTriangulation& target, RefineResult& counts, bool whole_checks,
+                            const RefineOptions& with) {
+        auto run = [&with, whole_checks](GeodesicTriangulation& on, RefineResult& c, double curved_fraction) {
+            Refiner refiner(on, with, c, curved_fraction, whole_checks);
             refiner.bisect();
             refiner.raise_min_angle();
             refiner.count_corners_left();
@@ -987,7 +1148,31 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         }
         return validate(target);
     };
-    ValidationReport after = refine_given(g, result, false);
+    ValidationReport after = refine_given(g, result, false, options);
+    // Given up on a few triangles with vertex moves, not cascading into the cap: once more without them, and the
+    // better kept. The ways out that refinement has where it is stuck (a longer cap when nearly done, removing the
+    // vertices it added) were made for circumcentres alone, and moves can stand in their way: at 30 degrees,
+    // footbones and boxpart reach the angle only without moves. Where more are left, circumcentres alone left more
+    // still on every mesh measured (man, gears and skull_thing74168 at 25 degrees, femur_cgal at 30).
+    if (options.move_vertices && options.min_angle_deg > 0.0 && after.valid && result.small_corners_left > 0 &&
+        result.small_corners_left <= k_few_corners_left && !result.vertex_cap_reached) {
+        if (options.progress) options.progress("corners left with vertex moves: starting again without them");
+        RefineOptions without = options;
+        without.move_vertices = false;
+        GeodesicTriangulation other = given;
+        RefineResult other_result = given_result;
+        const ValidationReport other_report = refine_given(other, other_result, false, without);
+        const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
+        if (other_report.valid && (other_result.small_corners_left < result.small_corners_left ||
+                                   (other_result.small_corners_left == result.small_corners_left &&
+                                    smallest_corner_of(other, exempt_below) > smallest_corner_of(g, exempt_below)))) {
+            g = std::move(other);
+            result = other_result;
+            after = other_report;
+            result.without_moves_kept = true;
+        }
+        result.without_moves_tried = true;
+    }
     // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
     // with bisections, a face split whose geodesics passed them left patches that were not disks. Where the
     // result is invalid, refinement starts again from the G given, every step then also checked on all of G.
@@ -995,7 +1180,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         if (options.progress) options.progress("the result was not valid: starting again, checking all of G each step");
         g = given;
         result = given_result;
-        after = refine_given(g, result, true);
+        after = refine_given(g, result, true, options);
         result.whole_checks = true;
     }
     result.valid_after = after.valid;

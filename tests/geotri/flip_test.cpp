@@ -396,27 +396,9 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
     std::cout << "[ flip     ] " << made_valid << " of " << invalid << " invalid traced G became valid\n";
 }
 
-/// The mesh at `path`, decimated to its coarsest or to 320 faces and traced in the decimation's classes, as the
-/// pipeline does.
-GeodesicTriangulation traced_in_classes(const std::string& path, const std::string& name, bool coarsest) {
-    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
-    DecimateOptions options;
-    if (coarsest)
-        options.coarsest = true;
-    else
-        options.target_faces = 320;
-    const DecimateResult decimated = decimate(*fine, options);
-    const EdgePaths paths = make_edge_paths(*fine, decimated);
-    GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, name));
-    TraceOptions trace_options;
-    trace_options.edge_paths = &paths;
-    trace(traced, trace_options);
-    return traced;
-}
-
 /// `name` from the shared meshes, as traced_in_classes() does.
 GeodesicTriangulation traced_as_the_pipeline_does(const std::string& name, bool coarsest) {
-    return traced_in_classes(test::shared_mesh(name).path, name, coarsest);
+    return test::traced_in_classes(test::shared_mesh(name).path, name, coarsest);
 }
 
 TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_t) {
@@ -592,7 +574,7 @@ TEST(FlipToDelaunay, untangling_bisects_the_tangled_edges_where_nothing_else_hel
     // The bundled joint (genus 2) at its coarsest, 32 faces, traced in the decimation's classes: untangling, its
     // last resorts included, cannot make it valid; bisecting the edges that the violations name lets it go on.
     const GeodesicTriangulation traced =
-        traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", "cad/joint.off", true);
+        test::traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", "cad/joint.off", true);
     FlipToDelaunayOptions without;
     without.bisection_rounds = 0;
     GeodesicTriangulation stuck_g = traced;

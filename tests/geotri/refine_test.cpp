@@ -99,16 +99,23 @@ TEST(Refine, bad_options_and_an_invalid_g_are_invalid_input) {
 
 /// Refines G to `angle` degrees and checks: valid, every corner that is not exempt at least `angle`, and the same
 /// result when run again. The result goes to `out` when given.
-void check_min_angle(GeodesicTriangulation g, double angle, const std::string& name, RefineResult* out = nullptr) {
+/// Refinement without vertex moves: for the tests of what moves make rarer.
+RefineOptions without_moves() {
+    RefineOptions options;
+    options.move_vertices = false;
+    return options;
+}
+
+void check_min_angle(GeodesicTriangulation g, double angle, const std::string& name, RefineResult* out = nullptr,
+                     RefineOptions options = {}) {
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     GeodesicTriangulation twin = g;
-    RefineOptions options;
     options.min_angle_deg = angle;
     const RefineResult r = refine(g, options);
     std::cout << "[ refine   ] " << name << ": " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg
               << "° (mean " << r.angles_after.mean_deg << "°), " << g.coarse().n_faces() << " faces, "
               << r.face_splits << " circumcentres, " << r.edge_splits << " edge splits, " << r.removed_vertices
-              << " vertices taken out, " << r.flips << " flips, "
+              << " vertices taken out, " << r.moved_vertices << " moved, " << r.flips << " flips, "
               << r.refused_splits << " refused, " << r.exempt_corners << " exempt corners, " << r.seconds << " s\n";
     EXPECT_TRUE(r.valid_after) << describe(validate(g));
     EXPECT_FALSE(r.vertex_cap_reached);
@@ -202,16 +209,63 @@ TEST(Refine, corners_above_180_degrees_are_cut_in_two) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
+    // Without vertex moves, cutting leaves none. The moves that raise the minimum angle can open such corners
+    // where cutting is then refused, and moves that narrow them mend only some: the spine keeps 6 of its 19.
     for (const char* mesh : {"anatomy/lumbar_spine_L2-L5_mean.ply", "classic/bunny_closed_cgal.off"}) {
         GeodesicTriangulation g = traced(test::shared_mesh(mesh).path, 320);
         flip_to_delaunay(g);
         const int before = wide_corners(g);
-        RefineResult r;
+        RefineResult cut, r;
+        check_min_angle(g, 25.0, mesh, &cut, without_moves());
         check_min_angle(g, 25.0, mesh, &r);
         std::cout << "[ refine   ] " << mesh << ": " << before << " corners above 180 degrees -> "
-                  << r.wide_corners_left << "\n";
+                  << cut.wide_corners_left << " without vertex moves, " << r.wide_corners_left << " with them\n";
         EXPECT_GT(before, 0) << "the test needs such corners";
-        EXPECT_EQ(r.wide_corners_left, 0);
+        EXPECT_EQ(cut.wide_corners_left, 0);
+        EXPECT_LT(r.wide_corners_left, before);
+    }
+}
+
+// On couplingdown and 42400-IDGH at 30 degrees, circumcentres alone cascade into the vertex cap (3116 and 3278 faces,
+// 288 and 457 corners left); moving vertices to the centroid of their stars first reaches the angle.
+TEST(Refine, vertex_moves_reach_30_degrees_where_circumcentres_alone_cascade) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    for (const char* mesh : {"cad/couplingdown.off", "stress/42400-IDGH.stl"}) {
+        GeodesicTriangulation g = traced(test::shared_mesh(mesh).path, 320);
+        flip_to_delaunay(g);
+        ASSERT_TRUE(validate(g).valid) << describe(validate(g));
+        RefineOptions options = without_moves();
+        options.min_angle_deg = 30.0;
+        GeodesicTriangulation alone = g;
+        const RefineResult cascade = refine(alone, options);
+        RefineResult r;
+        check_min_angle(g, 30.0, mesh, &r);
+        std::cout << "[ refine   ] " << mesh << " at 30 degrees: without moves " << alone.coarse().n_faces()
+                  << " faces, " << cascade.small_corners_left << " corners left\n";
+        EXPECT_TRUE(cascade.vertex_cap_reached);
+        EXPECT_GT(cascade.small_corners_left, 0);
+        EXPECT_GT(r.moved_vertices, 0);
+        EXPECT_LT(g.coarse().n_faces(), alone.coarse().n_faces());
+    }
+}
+
+// Traced as the pipeline does (in the decimation's classes), footbones and boxpart at 30 degrees are left with one
+// corner below the angle with vertex moves, where the ways out of refinement without them (a longer cap, removing
+// the vertices it added) reach it: refinement tries again without moves and returns that result.
+TEST(Refine, where_vertex_moves_leave_a_few_corners_refinement_tries_without_them) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    for (const char* mesh : {"anatomy/footbones.ply", "cad/boxpart.obj"}) {
+        GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
+        flip_to_delaunay(g);
+        RefineResult r;
+        check_min_angle(g, 30.0, mesh, &r);
+        EXPECT_TRUE(r.without_moves_tried);
+        EXPECT_TRUE(r.without_moves_kept);
+        EXPECT_EQ(r.moved_vertices, 0);  // the counts are those of the result returned
     }
 }
 
@@ -225,7 +279,7 @@ TEST(Refine, corners_above_180_degrees_left_at_the_vertex_cap_are_cut_at_last) {
     GeodesicTriangulation g = traced(test::shared_mesh("anatomy/skull_thing74168.stl").path, 320);
     flip_to_delaunay(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
-    RefineOptions options;
+    RefineOptions options = without_moves();  // with them, refinement does not cascade there
     options.min_angle_deg = 25.0;
     options.max_new_vertices = 4 * static_cast<int>(g.coarse().n_faces()) + 100;  // the default, given
     GeodesicTriangulation to_the_letter = g;
@@ -258,7 +312,7 @@ TEST(Refine, a_refinement_nearly_done_at_the_vertex_cap_goes_on) {
     flip_to_delaunay(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     const std::size_t given = g.coarse().n_vertices();
-    RefineOptions options;
+    RefineOptions options = without_moves();  // with them, it stops far below the cap, one corner left
     options.min_angle_deg = 30.0;
     const int cap = 4 * static_cast<int>(g.coarse().n_faces()) + 100;  // the default, given
     options.max_new_vertices = cap;
@@ -289,13 +343,14 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     flip_to_delaunay(g);
     const GeodesicTriangulation flipped = g;
     RefineResult r;
-    check_min_angle(g, 25.0, "triceratops, 320 faces", &r);
+    // With vertex moves, triceratops reaches 25 degrees at the first attempt.
+    check_min_angle(g, 25.0, "triceratops, 320 faces", &r, without_moves());
     EXPECT_TRUE(r.second_attempt);
     EXPECT_TRUE(r.second_attempt_kept);
 
     // At 30 degrees both attempts give up next to saddles of T: the first result, which leaves fewer corners, is
     // kept, and refining again gives the same G.
-    RefineOptions options;
+    RefineOptions options = without_moves();
     options.min_angle_deg = 30.0;
     GeodesicTriangulation at_30 = flipped, again = flipped;
     const RefineResult first_kept = refine(at_30, options);
@@ -333,7 +388,7 @@ TEST(Refine, a_vertex_that_refinement_inserted_is_taken_out_where_only_that_mend
     GeodesicTriangulation g = traced(test::shared_mesh("cad/boxpart.obj").path, 320);
     flip_to_delaunay(g);
     RefineResult r;
-    check_min_angle(g, 30.0, "boxpart, 320 faces", &r);
+    check_min_angle(g, 30.0, "boxpart, 320 faces", &r, without_moves());  // with them, a move mends it
     EXPECT_GE(r.removed_vertices, 1);
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // Refinement of a valid G (issue 4): longest-edge bisection down to a geodesic edge length or a face count, then
-// Delaunay refinement to a minimum corner angle by inserting geodesic circumcentres. Every step is a split whose
-// local checks keep G valid or refuse it (split.h), and flips towards geodesic Delaunay follow each one; where those
-// checks miss (a face split once did), refine() starts again with every step checked on all of G.
+// Delaunay refinement to a minimum corner angle by inserting geodesic circumcentres, moving vertices within their
+// stars where that mends a corner. Every step is a split or a move whose local checks keep G valid or refuse it
+// (split.h, relocate.h), and flips towards geodesic Delaunay follow each one; where those checks miss (splits
+// have), refine() starts again with every step checked on all of G.
 
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/geodesic_triangulation.h>
@@ -40,6 +41,11 @@ struct RefineOptions {
     /// at curved points of T (whose cone angle differs from 2π by more than a third of the minimum angle, or in a
     /// second attempt (RefineResult::second_attempt) by more than a thousandth of it) are always kept.
     bool remove_vertices = true;
+    /// Before a circumcentre, the worst triangle's vertices that are not at curved points of T are tried at the
+    /// centroid of their star (relocate_vertex_in_star(), then flips): the move that raises the smallest corner of
+    /// the faces it changes the most is kept, when it raises it at all and opens no corner above 180 degrees. With
+    /// remove_vertices off, the vertices of the G given are not moved.
+    bool move_vertices = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
     /// where angle refinement cascades instead of converging (it does on some curved meshes at 25-30 degrees), it
@@ -60,6 +66,7 @@ struct RefineResult {
     int face_splits = 0;               ///< circumcentres inserted inside a patch
     int refused_splits = 0;            ///< splits that split_edge() or split_face() refused (G kept as it was)
     int removed_vertices = 0;          ///< vertices taken out (RefineOptions::remove_vertices)
+    int moved_vertices = 0;            ///< vertices moved to the centroid of their star, to raise a corner
     int flips = 0;
     int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
     int small_corners_left = 0;        ///< other corners below the minimum angle, where refinement gave up
@@ -72,6 +79,10 @@ struct RefineResult {
     /// The second attempt had fewer corners left (or as many and a larger smallest corner that is not exempt): its
     /// result is the one returned, with its counts.
     bool second_attempt_kept = false;
+    /// Refinement with vertex moves (RefineOptions::move_vertices) gave up on a few triangles (at most 4 corners)
+    /// without reaching the vertex cap, and refined the G given again without them; where that left fewer corners below the angle (or as
+    /// many and a larger smallest corner that is not exempt), its result is the one returned, with its counts.
+    bool without_moves_tried = false, without_moves_kept = false;
     /// Why the second attempt stopped, where it threw NumericalError: the first result is returned then.
     std::string second_attempt_error;
     /// The local checks let through a step that left G invalid: refinement started again from the G given, with

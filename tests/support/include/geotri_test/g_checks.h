@@ -3,6 +3,7 @@
 // fine_mesh.h: geotri_test_support links only libgeodesic, so a test that includes this header links libgeotri.
 
 #include <geotri/decimate.h>
+#include <geotri/edge_paths_io.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/trace.h>
 #include <geotri/validate.h>
@@ -11,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 
 namespace geotri::test {
@@ -59,6 +61,24 @@ inline CoarseMesh decimated_coarse(const FineMesh& fine, std::size_t target_face
     DecimateOptions options;
     options.target_faces = target_faces;
     return make_coarse_mesh(decimate(fine, options).coarse, "decimated");
+}
+
+/// The mesh at `path`, decimated to its coarsest or to 320 faces and traced in the decimation's classes, as the
+/// pipeline does.
+inline GeodesicTriangulation traced_in_classes(const std::string& path, const std::string& name, bool coarsest) {
+    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
+    DecimateOptions options;
+    if (coarsest)
+        options.coarsest = true;
+    else
+        options.target_faces = 320;
+    const DecimateResult decimated = decimate(*fine, options);
+    const EdgePaths paths = make_edge_paths(*fine, decimated);
+    GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, name));
+    TraceOptions trace_options;
+    trace_options.edge_paths = &paths;
+    trace(traced, trace_options);
+    return traced;
 }
 
 }  // namespace geotri::test
