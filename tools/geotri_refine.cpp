@@ -130,6 +130,7 @@ int run(tools::Tool& tool) {
         summary.add("second_attempt_error", r.second_attempt_error);
         summary.add("without_moves_tried", r.without_moves_tried);
         summary.add("without_moves_kept", r.without_moves_kept);
+        summary.add("without_moves_error", r.without_moves_error);
         summary.add("whole_checks", r.whole_checks);
         summary.add("longest_edge", r.longest_edge);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);

@@ -177,6 +177,15 @@ double smallest_corner_of(const GeodesicTriangulation& g, double exempt_below = 
     return smallest;
 }
 
+/// Whether refinement result `a` (G `ga`) is better than `b` (G `gb`): fewer corners left below the angle, or as
+/// many and a larger smallest corner at a point of T whose cone angle is at least `exempt_below`.
+bool better_result(const RefineResult& a, const GeodesicTriangulation& ga, const RefineResult& b,
+                   const GeodesicTriangulation& gb, double exempt_below) {
+    return a.small_corners_left < b.small_corners_left ||
+           (a.small_corners_left == b.small_corners_left &&
+            smallest_corner_of(ga, exempt_below) > smallest_corner_of(gb, exempt_below));
+}
+
 class Refiner {
 public:
     /// `curved_fraction`: a vertex of T whose cone angle differs from 2π by more than this fraction of the minimum
@@ -207,6 +216,7 @@ public:
         for (VertexHandle v : g.coarse().vertices()) {
             if (g.location(v).kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(g.location(v).vertex);
             given_.push_back(g.location(v));
+            input_.push_back(g.location(v));
         }
         for (EdgeHandle e : g.coarse().edges())
             if (g.length(e) < min_edge_) {
@@ -270,7 +280,7 @@ public:
             }
             if (!worst.is_valid()) {
                 // No triangle is left below the angle but those given up: then the corners above k_max_corner.
-                if (!mend_wide_corners(widest, min_angle_)) given_up.insert(vertices_of(coarse, widest));
+                if (!mend_wide_corners(widest, min_angle_, &given_up)) given_up.insert(vertices_of(coarse, widest));
                 progress("corners above 180 degrees");
                 continue;
             }
@@ -280,7 +290,7 @@ public:
                 given_up.clear();  // the coarse mesh was renumbered
                 continue;
             }
-            if (options_.move_vertices && may_move() && move_a_vertex_of(worst, given_up, MoveGoal{})) continue;
+            if (options_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, MoveGoal{})) continue;
             if (!refine_face(worst)) given_up.insert(vertices_of(coarse, worst));
             progress("angle refinement");
         }
@@ -401,7 +411,7 @@ private:
     /// began). Before the vertex cap, the bar is the minimum angle, so that mending them never makes work for the
     /// minimum angle nor lowers it (with half of it as the bar for the new vertex's corners, triceratops ended at
     /// 7.4 degrees instead of 11.0).
-    bool mend_wide_corners(FaceHandle f, double bar) {
+    bool mend_wide_corners(FaceHandle f, double bar, std::set<std::array<int, 3>>* given_up = nullptr) {
         std::vector<std::pair<double, HalfedgeHandle>> wide;
         for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
             const double corner = corner_angle(g_, h);
@@ -419,12 +429,12 @@ private:
             }
         }
         const std::optional<Centre> centre = circumcentre(f);
-        if (centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length, floor)) return true;
+        if (centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length, floor))
+            return true;
         // Else a vertex of f moved, where that narrows the widest corner of the faces it changes and keeps their
         // corners at least the floor (or what they were): the moves that raise the minimum angle may open such
         // corners, and the splits above then be refused (the lumbar spine at 25 degrees).
-        std::set<std::array<int, 3>> none;
-        return options_.move_vertices && may_move() && move_a_vertex_of(f, none, MoveGoal{true, floor});
+        return options_.move_vertices && may_move() && move_a_vertex_of(f, given_up, MoveGoal{true, floor});
     }
 
     /// Where refinement stops with triangles below the minimum angle (at the vertex cap, or given up), the corners
@@ -548,6 +558,16 @@ private:
     /// they are found without a pass over G, whose cost grew with G at every step.
     std::vector<int> changed_faces(const GeodesicTriangulation& trial, VertexHandle vertex,
                                    const std::vector<EdgeHandle>& flipped) const {
+        std::vector<int> faces = faces_at(trial, vertex, flipped);
+        faces.erase(std::remove_if(faces.begin(), faces.end(),
+                                   [&](int f) { return !is_changed(trial, FaceHandle(f)); }),
+                    faces.end());
+        return faces;
+    }
+
+    /// The faces of `trial` at `vertex` and at the edges of `flipped` (indices, sorted, each once).
+    static std::vector<int> faces_at(const GeodesicTriangulation& trial, VertexHandle vertex,
+                                     const std::vector<EdgeHandle>& flipped) {
         const CoarseMesh& coarse = trial.coarse();
         std::vector<int> faces;
         for (FaceHandle f : coarse.vf_range(vertex)) faces.push_back(f.idx());
@@ -558,9 +578,6 @@ private:
             }
         std::sort(faces.begin(), faces.end());
         faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-        faces.erase(std::remove_if(faces.begin(), faces.end(),
-                                   [&](int f) { return !is_changed(trial, FaceHandle(f)); }),
-                    faces.end());
         return faces;
     }
 
@@ -749,6 +766,7 @@ private:
         std::vector<int> changed;  ///< the faces that the move and its flips changed
         double score = 0.0;        ///< the higher the better: their smallest corner after, or minus the widest
         int flips = 0;
+        bool numerical_trouble = false;  ///< not cached as failed: it says nothing about the star
     };
 
     /// Moves a vertex of f to the centroid of its star (star_centroid()), then flips around it: of f's three, the
@@ -756,18 +774,19 @@ private:
     /// to narrow, lowers their widest the most). On a bumpy T, circumcentres cascade into ever smaller
     /// triangles whose corners the bumps distort; moving a vertex mends a corner without making a triangle.
     /// Vertices at curved points of T stay, and so do those of the G given with RefineOptions::remove_vertices
-    /// off. Each move raises the smallest corner of the faces it changes and leaves the others as they are. The
-    /// three are tried in parallel (each with its flips on one thread), and the choice does not depend on the
-    /// thread count. The faces that the move changes leave `given_up`: their corners are others now.
-    bool move_a_vertex_of(FaceHandle f, std::set<std::array<int, 3>>& given_up, const MoveGoal& goal) {
+    /// off. Each move that raises the minimum angle raises the smallest corner of the faces it changes and leaves
+    /// the others as they are. The three are tried in parallel (each with its flips on one thread), and the choice
+    /// does not depend on the thread count. The faces that the move changes leave `given_up` (when given).
+    bool move_a_vertex_of(FaceHandle f, std::set<std::array<int, 3>>* given_up, const MoveGoal& goal) {
         std::vector<MoveCandidate> candidates;
         for (VertexHandle v : g_.coarse().fv_range(f)) {
             if (curved(v) || (!options_.remove_vertices &&
-                              std::find(given_.begin(), given_.end(), g_.location(v)) != given_.end()))
+                              std::find(input_.begin(), input_.end(), g_.location(v)) != input_.end()))
                 continue;
             // A star whose move failed before, and that has not changed since, fails again.
             std::vector<double> key = star_key(v);
-            if (goal.narrow || !failed_moves_.count(key)) candidates.push_back({v, std::move(key), {}, {}, 0.0, 0});
+            if (goal.narrow || !failed_moves_.count(key))
+                candidates.push_back({v, std::move(key), {}, {}, 0.0, 0, false});
         }
         detail::for_each_with_propagation(
             g_.fine().mesh, candidates.size(), flip_options_.threads,
@@ -775,11 +794,21 @@ private:
             &propagation_, &pool_);
         MoveCandidate* best = nullptr;
         for (MoveCandidate& c : candidates) {
-            if (!c.moved && !goal.narrow) failed_moves_.insert(c.key);
+            if (!c.moved && !goal.narrow && !c.numerical_trouble) failed_moves_.insert(c.key);
             else if (c.moved && (!best || c.score > best->score)) best = &c;
         }
         if (!best) return false;
-        for (int x : best->changed) given_up.erase(vertices_of(best->moved->coarse(), FaceHandle(x)));
+        // The triangles given up that the move changed, or that had the moved vertex, are others now.
+        if (given_up) {
+            for (int x : best->changed) given_up->erase(vertices_of(best->moved->coarse(), FaceHandle(x)));
+            const int moved = best->vertex.idx();
+            for (auto it = given_up->begin(); it != given_up->end();)
+                it = std::find(it->begin(), it->end(), moved) != it->end() ? given_up->erase(it) : std::next(it);
+        }
+        const SurfacePoint& from = g_.location(best->vertex);
+        if (from.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.erase(from.vertex);
+        const SurfacePoint& to = best->moved->location(best->vertex);
+        if (to.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(to.vertex);
         replace_g(std::move(*best->moved), &best->changed);
         ++result_.moved_vertices;
         result_.flips += best->flips;
@@ -788,8 +817,17 @@ private:
 
     bool may_move() const { return result_.moved_vertices / k_moves_per_new_vertex < budget_; }
 
-    /// One move of move_a_vertex_of(), on a copy of G, with `propagation` for its geodesics and flips.
+    /// One move of move_a_vertex_of(), on a copy of G, with `propagation` for its geodesics and flips. A move only
+    /// tries to do better: one that meets numerical trouble is not made.
     void try_move(MoveCandidate& c, geodesic::ExactGeodesic& propagation, const MoveGoal& goal) const {
+        try {
+            try_move_or_throw(c, propagation, goal);
+        } catch (const NumericalError&) {
+            c.moved.reset();
+            c.numerical_trouble = true;
+        }
+    }
+    void try_move_or_throw(MoveCandidate& c, geodesic::ExactGeodesic& propagation, const MoveGoal& goal) const {
         const std::optional<SurfacePoint> target = star_centroid(c.vertex);
         if (!target) return;
         GeodesicTriangulation trial = g_;
@@ -808,13 +846,7 @@ private:
         }
         // Every face at the vertex changed (its corners did, though not its vertices), and those of the flipped
         // edges.
-        std::vector<int> changed;
-        for (FaceHandle x : coarse.vf_range(c.vertex)) changed.push_back(x.idx());
-        for (EdgeHandle e : flipped)
-            for (int side = 0; side < 2; ++side)
-                changed.push_back(coarse.face_handle(coarse.halfedge_handle(e, side)).idx());
-        std::sort(changed.begin(), changed.end());
-        changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+        std::vector<int> changed = faces_at(trial, c.vertex, flipped);
         const double smallest = smallest_corner_in(trial, changed), before = smallest_corner_in(g_, changed);
         if (smallest < keep_above_) return;
         if (goal.narrow) {
@@ -1062,7 +1094,8 @@ private:
     PropagationPool pool_;  ///< for the other threads of the flips' and reconnections' parallel loops
     FlipToDelaunayOptions flip_options_;
     std::set<int> coarse_at_fine_vertex_;  ///< the vertices of T that coarse vertices sit on
-    std::vector<SurfacePoint> given_;       ///< the locations of the vertices of the G given
+    std::vector<SurfacePoint> given_;       ///< the locations of the vertices that removals may take out
+    std::vector<SurfacePoint> input_;       ///< the locations of the vertices of the G given
     struct ShortEdge {
         std::array<Eigen::Vector3d, 2> ends;
         double length;
@@ -1076,7 +1109,7 @@ private:
     bool whole_checks_ = false;
     /// The faces of G that changed since raise_min_angle() last looked (indices), or, when renumbered_, any.
     std::vector<int> changed_faces_;
-    bool renumbered_ = false;
+    bool renumbered_ = true;  // nothing is recorded until raise_min_angle() looks
 };
 
 }  // namespace
@@ -1099,6 +1132,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     result.angles_before = corner_angle_stats(g);
 
     // The G given, for a second attempt at the minimum angle and for the safety net (a copy shares the polylines).
+    const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
     const RefineResult given_result = result;
     const GeodesicTriangulation given = g;
     // Refines `target` (the G given), with a second attempt where that helps; returns validate() of the result.
@@ -1130,13 +1164,8 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
                 finished = false;
             }
             second_result.second_attempt = true;
-            const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
             // Only a valid second result can be better: the local checks may have let an invalid one through.
-            const bool fewer_left =
-                finished && (second_result.small_corners_left < counts.small_corners_left ||
-                             (second_result.small_corners_left == counts.small_corners_left &&
-                              smallest_corner_of(second, exempt_below) > smallest_corner_of(target, exempt_below)));
-            if (fewer_left) {
+            if (finished && better_result(second_result, second, counts, target, exempt_below)) {
                 ValidationReport second_report = validate(second);
                 if (second_report.valid) {
                     target = std::move(second);
@@ -1161,17 +1190,20 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         without.move_vertices = false;
         GeodesicTriangulation other = given;
         RefineResult other_result = given_result;
-        const ValidationReport other_report = refine_given(other, other_result, false, without);
-        const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
-        if (other_report.valid && (other_result.small_corners_left < result.small_corners_left ||
-                                   (other_result.small_corners_left == result.small_corners_left &&
-                                    smallest_corner_of(other, exempt_below) > smallest_corner_of(g, exempt_below)))) {
-            g = std::move(other);
-            result = other_result;
-            after = other_report;
-            result.without_moves_kept = true;
+        std::optional<ValidationReport> other_report;
+        try {
+            other_report = refine_given(other, other_result, false, without);
+        } catch (const NumericalError& error) {
+            // It only tries to do better: where it meets numerical trouble, the result with moves stands.
+            result.without_moves_error = error.what();
         }
         result.without_moves_tried = true;
+        if (other_report && other_report->valid && better_result(other_result, other, result, g, exempt_below)) {
+            g = std::move(other);
+            result = other_result;
+            after = *other_report;
+            result.without_moves_tried = result.without_moves_kept = true;
+        }
     }
     // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
     // with bisections, a face split whose geodesics passed them left patches that were not disks. Where the

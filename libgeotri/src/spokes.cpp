@@ -5,6 +5,7 @@
 #include <geotri/patch_region.h>
 #include <geotri/tangent_angles.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 

@@ -142,7 +142,8 @@ TEST(Relocate, moves_in_star_on_the_cube_leave_g_valid_or_unchanged) {
 }
 
 TEST(Relocate, moves_in_star_on_bundled_bob_leave_g_valid_or_unchanged) {
-    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
+    const std::string path = std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply";
+    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
     GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 60));
     trace(g);
     flip_to_delaunay(g);

@@ -43,8 +43,9 @@ struct RefineOptions {
     bool remove_vertices = true;
     /// Before a circumcentre, the worst triangle's vertices that are not at curved points of T are tried at the
     /// centroid of their star (relocate_vertex_in_star(), then flips): the move that raises the smallest corner of
-    /// the faces it changes the most is kept, when it raises it at all and opens no corner above 180 degrees. With
-    /// remove_vertices off, the vertices of the G given are not moved.
+    /// the faces it changes the most is kept, when it raises it at all; where a corner above 180 degrees cannot be
+    /// cut, a move that narrows it is tried too. With remove_vertices off, the vertices of the G given are not
+    /// moved.
     bool move_vertices = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
@@ -80,9 +81,12 @@ struct RefineResult {
     /// result is the one returned, with its counts.
     bool second_attempt_kept = false;
     /// Refinement with vertex moves (RefineOptions::move_vertices) gave up on a few triangles (at most 4 corners)
-    /// without reaching the vertex cap, and refined the G given again without them; where that left fewer corners below the angle (or as
-    /// many and a larger smallest corner that is not exempt), its result is the one returned, with its counts.
+    /// without reaching the vertex cap, and refined the G given again without them; where that left fewer corners
+    /// below the angle (or as many and a larger smallest corner that is not exempt), its result is the one
+    /// returned, with its counts.
     bool without_moves_tried = false, without_moves_kept = false;
+    /// Why refining again without moves stopped, where it threw NumericalError: the result with moves is returned.
+    std::string without_moves_error;
     /// Why the second attempt stopped, where it threw NumericalError: the first result is returned then.
     std::string second_attempt_error;
     /// The local checks let through a step that left G invalid: refinement started again from the G given, with
