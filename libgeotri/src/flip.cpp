@@ -187,11 +187,16 @@ FlipPlan plan_flip(const GeodesicTriangulation& g, EdgeHandle e, const FlipOptio
     }
     const SurfacePoint& from = g.location(plan.c);
     const SurfacePoint& to = g.location(plan.d);
-    geodesic::PropagationOptions propagation_options;
-    propagation_options.stop_points = {to};
-    propagation_options.goal_directed = true;
-    propagation->propagate({from}, propagation_options);
-    plan.path = propagation->shortest_path(to);
+    if (std::optional<Polyline> kept = options.paths ? options.paths->find(from, to) : std::nullopt) {
+        plan.path = std::move(*kept);
+    } else {
+        geodesic::PropagationOptions propagation_options;
+        propagation_options.stop_points = {to};
+        propagation_options.goal_directed = true;
+        propagation->propagate({from}, propagation_options);
+        plan.path = propagation->shortest_path(to);
+        if (options.paths) options.paths->keep(from, to, plan.path);
+    }
     if (plan.path.size() < 2) {
         plan.refusal = FlipRefusal::no_path;
         plan.reason = name + ": no geodesic from coarse vertex " + std::to_string(plan.c.idx()) + " to coarse vertex " +

@@ -218,6 +218,7 @@ private:
         FlipOptions flip_options;
         flip_options.propagation = &propagation;
         flip_options.region_fallback = false;  // done for all such edges after the ordinary flips (sweep())
+        flip_options.paths = options_.paths;
         result.plan = plan_flip(g_, e, flip_options);
         result.planned = true;
         if (!result.plan.accepted()) {

@@ -5,6 +5,7 @@
 // the flip criteria and the statistics need.
 
 #include <geotri/geodesic_triangulation.h>
+#include <geotri/path_cache.h>
 
 #include <array>
 #include <string>
@@ -53,6 +54,9 @@ struct FlipOptions {
     /// The overlay of this same G for the fallback, or null: the two patches alone are then cut out of T, which
     /// costs what they hold (PatchRegion).
     const Overlay* overlay = nullptr;
+    /// Shortest c-d geodesics found before, to use again instead of a propagation (the same path), and where the
+    /// ones found now are kept; none when null.
+    PathCache* paths = nullptr;
 };
 
 /// A flip computed but not yet done: the new geodesic and the corners it makes.

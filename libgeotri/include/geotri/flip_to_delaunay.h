@@ -67,6 +67,8 @@ struct FlipToDelaunayOptions {
     /// Propagation objects over g.fine().mesh for the other threads of improve's evaluations to reuse across calls
     /// (improve_around() in a loop); each thread makes its own per call when null.
     PropagationPool* propagations = nullptr;
+    /// Shortest geodesics found before, for improve's flips to use again (FlipOptions::paths); none when null.
+    PathCache* paths = nullptr;
     /// Called after each untangle round and each improve sweep with a line saying where it is.
     std::function<void(const std::string&)> progress;
 };
