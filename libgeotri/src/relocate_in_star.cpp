@@ -59,7 +59,6 @@ RelocateResult relocate_vertex_in_star(GeodesicTriangulation& g, VertexHandle v,
         const std::size_t before = (i + n - 1) % n;
         detail::Spoke& s = spokes[i];
         s.to = coarse.to_vertex_handle(fan[i]);
-        s.patch = coarse.face_handle(fan[i]).idx();
         s.corner_from = coarse.next_halfedge_handle(fan[i]);
         s.corner_to = coarse.opposite_halfedge_handle(coarse.next_halfedge_handle(fan[before]));
         for (std::size_t j = 0; j < n; ++j) {
@@ -70,7 +69,7 @@ RelocateResult relocate_vertex_in_star(GeodesicTriangulation& g, VertexHandle v,
     }
     SplitOptions options;
     options.propagation = propagation;
-    options.region_fallback = false;
+    options.region_fallback = false;  // the star is one region, not a patch per spoke (Spoke::patch stays unset)
     std::string why = detail::find_spokes(g, to, spokes, options, true);
     if (why.empty()) why = detail::spokes_apart(mesh, to, spokes);
     if (!why.empty()) {
