@@ -539,7 +539,7 @@ private:
             shortest_new = std::min(shortest_new, trial.length(trial.coarse().edge_handle(h)));
         const double changed_bar = std::max(keep_above_, changed_floor);
         if (shortest_new < min_length || smallest_corner_around(trial, done.vertex) < floor ||
-            (changed_bar > 0.0 && smallest_corner_in(trial, changed) < changed_bar) || !valid_whole(trial)) {
+            (changed_bar > 0.0 && corners_in(trial, changed).smallest < changed_bar) || !valid_whole(trial)) {
             ++result_.refused_splits;
             return Tried::refused_shape;
         }
@@ -587,22 +587,16 @@ private:
         return faces;
     }
 
-    /// The smallest corner of `faces` (indices) in `trial`, or infinity.
-    static double smallest_corner_in(const GeodesicTriangulation& trial, const std::vector<int>& faces) {
-        double smallest = std::numeric_limits<double>::infinity();
+    /// The smallest and the largest corner of `faces` (indices) in `trial`, exempt or not (infinity and 0 for none).
+    static CornerRange corners_in(const GeodesicTriangulation& trial, const std::vector<int>& faces) {
+        CornerRange range;
         for (int f : faces)
-            for (HalfedgeHandle h : halfedges_of(trial.coarse(), FaceHandle(f)))
-                smallest = std::min(smallest, corner_angle(trial, h));
-        return smallest;
-    }
-
-    /// The largest corner of `faces` (indices) in `trial`, or 0.
-    static double largest_corner_in(const GeodesicTriangulation& trial, const std::vector<int>& faces) {
-        double largest = 0.0;
-        for (int f : faces)
-            for (HalfedgeHandle h : halfedges_of(trial.coarse(), FaceHandle(f)))
-                largest = std::max(largest, corner_angle(trial, h));
-        return largest;
+            for (HalfedgeHandle h : halfedges_of(trial.coarse(), FaceHandle(f))) {
+                const double corner = corner_angle(trial, h);
+                range.smallest = std::min(range.smallest, corner);
+                range.largest = std::max(range.largest, corner);
+            }
+        return range;
     }
 
     /// The smallest corner of the changed faces of `trial`, found by a pass over all of it: for a removal, whose
@@ -611,7 +605,7 @@ private:
         std::vector<int> faces;
         for (FaceHandle f : trial.coarse().faces())
             if (is_changed(trial, f)) faces.push_back(f.idx());
-        return smallest_corner_in(trial, faces);
+        return corners_in(trial, faces).smallest;
     }
 
     static double smallest_corner_around(const GeodesicTriangulation& g, VertexHandle v) {
@@ -853,17 +847,16 @@ private:
         // Every face at the vertex changed (its corners did, though not its vertices), and those of the flipped
         // edges.
         std::vector<int> changed = faces_at(trial, c.vertex, flipped);
-        const double smallest = smallest_corner_in(trial, changed), before = smallest_corner_in(g_, changed);
-        if (smallest < keep_above_) return;
+        const CornerRange after = corners_in(trial, changed), before = corners_in(g_, changed);
+        if (after.smallest < keep_above_) return;
         if (goal.narrow) {
-            const double widest = largest_corner_in(trial, changed);
-            if (!(widest < largest_corner_in(g_, changed) - k_min_move_gain) ||
-                smallest < std::min(goal.floor, before))
+            if (!(after.largest < before.largest - k_min_move_gain) ||
+                after.smallest < std::min(goal.floor, before.smallest))
                 return;
-            c.score = -widest;
+            c.score = -after.largest;
         } else {
-            if (!(smallest - before > k_min_move_gain)) return;
-            c.score = smallest;
+            if (!(after.smallest - before.smallest > k_min_move_gain)) return;
+            c.score = after.smallest;
         }
         if (!valid_whole(trial)) return;
         c.moved.emplace(std::move(trial));
