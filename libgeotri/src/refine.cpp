@@ -266,10 +266,7 @@ public:
         FacesByCorner faces(*this);
         bool extended = options_.max_new_vertices > 0;  // a cap that the caller gave is never extended
         bool all_removable = false;
-        // Where neither a circumcentre nor a split mends the worst triangle, one of its vertices may move onto a
-        // saddle of T that its geodesics bend at, before the triangle is given up.
-        MoveGoal saddle_move;
-        saddle_move.onto_saddles = true;
+        const MoveGoal saddle_move{false, k_saddle_move_floor * min_angle_, true};
         while (true) {
             const CoarseMesh& coarse = g_.coarse();
             faces.update();
@@ -307,6 +304,8 @@ public:
                 continue;
             }
             if (options_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, MoveGoal{})) continue;
+            // Where neither a circumcentre nor a split mends the worst triangle, one of its vertices may move onto
+            // a saddle of T that its geodesics bend at, before the triangle is given up.
             if (!refine_face(worst) &&
                 !(options_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, saddle_move)))
                 given_up.insert(vertices_of(coarse, worst));
@@ -764,9 +763,9 @@ private:
         return true;
     }
 
-    /// What a move must do: raise the smallest corner of the faces it changes by more than k_min_move_gain, or,
-    /// with `narrow`, lower their widest corner by as much, keeping their corners at least `floor` (or what they
-    /// were). Either way no corner may fall below keep_above_.
+    /// What a move must do: raise the smallest corner of the faces it changes by more than k_min_move_gain, to
+    /// at least `floor`, or, with `narrow`, lower their widest corner by as much, keeping their corners at least
+    /// `floor` (or what they were). Either way no corner may fall below keep_above_. Exempt corners count too.
     struct MoveGoal {
         bool narrow = false;
         double floor = 0.0;
@@ -790,8 +789,8 @@ private:
     /// triangles whose corners the bumps distort; moving a vertex mends a corner without making a triangle.
     /// Vertices at curved points of T stay, and so do those of the G given with RefineOptions::remove_vertices
     /// off. Each move that raises the minimum angle raises the smallest corner of the faces it changes and leaves
-    /// the others as they are. The three are tried in parallel (each with its flips on one thread), and the choice
-    /// does not depend on the thread count. The faces that the move changes leave `given_up` (when given).
+    /// the others as they are. The candidates are tried in parallel (each with its flips on one thread), and the
+    /// choice does not depend on the thread count. The faces that the move changes leave `given_up` (when given).
     bool move_a_vertex_of(FaceHandle f, std::set<std::array<int, 3>>* given_up, const MoveGoal& goal) {
         std::vector<MoveCandidate> candidates;
         for (VertexHandle v : g_.coarse().fv_range(f)) {
@@ -799,9 +798,13 @@ private:
                               std::find(input_.begin(), input_.end(), g_.location(v)) != input_.end()))
                 continue;
             // A star whose move failed before, and that has not changed since, fails again.
+            const std::vector<double> star = star_key(v);
             auto add = [&](const std::optional<SurfacePoint>& target) {
-                std::vector<double> key = star_key(v);
-                if (target) append_key(key, *target);
+                std::vector<double> key = star;
+                if (target) {
+                    key.push_back(-1.0);  // no star key is one field longer than a multiple of a location's
+                    append_key(key, *target);
+                }
                 if (goal.narrow || !failed_moves_.count(key))
                     candidates.push_back({v, target, std::move(key), {}, {}, 0.0, 0, false});
             };
@@ -877,9 +880,7 @@ private:
                 return;
             c.score = -after.largest;
         } else {
-            if (!(after.smallest - before.smallest > k_min_move_gain)) return;
-            // A vertex on a saddle stays there (curved()): a move onto one must leave what it changes near the angle.
-            if (c.target && after.smallest < k_saddle_move_floor * min_angle_) return;
+            if (!(after.smallest - before.smallest > k_min_move_gain) || after.smallest < goal.floor) return;
             c.score = after.smallest;
         }
         if (!valid_whole(trial)) return;
@@ -937,10 +938,11 @@ private:
         for (double x : fields) key.push_back(x);
     }
 
-    /// The curved vertices of T (see curved()) that the geodesics of f's two edges at its vertex v pass through,
-    /// each once, in the order met: a geodesic bends only at a saddle of T, whose curvature the two faces beside it
-    /// then share, so that their corners sum to well below π (on femur_cgal, to 86 degrees) and no split of theirs
-    /// can mend them. Moved onto the saddle, v takes that curvature as its own.
+    /// The saddles of T, curved as refinement counts it (curved()), that the geodesics of f's two edges at its
+    /// vertex v pass through, each once, in the order met: a shortest geodesic passes through no vertex of positive
+    /// curvature, and bends only at a saddle, whose curvature the two faces beside it then share, so that their
+    /// corners sum to well below π (on femur_cgal, to 86 degrees) and no split of theirs can mend them. Moved onto
+    /// the saddle, v takes that curvature as its own. (No coarse vertex is on a geodesic of a valid G.)
     std::vector<int> saddles_on_edges_of(FaceHandle f, VertexHandle v) const {
         const geodesic::Mesh& mesh = g_.fine().mesh;
         const CoarseMesh& coarse = g_.coarse();
@@ -950,9 +952,7 @@ private:
             const Polyline& line = g_.polyline(coarse.edge_handle(h));
             for (std::size_t i = 1; i + 1 < line.size(); ++i) {
                 const SurfacePoint& p = line[i];
-                if (p.kind == geodesic::PointKind::vertex &&
-                    std::abs(mesh.cone_angle(p.vertex) - 2.0 * k_pi) > curved_ &&
-                    !coarse_at_fine_vertex_.count(p.vertex) &&
+                if (p.kind == geodesic::PointKind::vertex && mesh.cone_angle(p.vertex) - 2.0 * k_pi > curved_ &&
                     std::find(found.begin(), found.end(), p.vertex) == found.end())
                     found.push_back(p.vertex);
             }

@@ -45,9 +45,9 @@ struct RefineOptions {
     /// centroid of their star (relocate_vertex_in_star(), then flips): the move that raises the smallest corner of
     /// the faces it changes the most is kept, when it raises it at all; where a corner above 180 degrees cannot be
     /// cut, a move that narrows it is tried too. Where neither a circumcentre nor a split mends the worst triangle,
-    /// a vertex of it may move onto a saddle of T that one of the triangle's geodesics at that vertex bends at,
-    /// when every corner that this changes is then at least half the minimum angle, before the triangle is given
-    /// up. With remove_vertices off, the vertices of the G given are not moved.
+    /// a vertex of it may move onto a saddle of T (curved as above) that one of the triangle's geodesics at that
+    /// vertex bends at, when every corner that this changes (exempt or not) is then at least half the minimum
+    /// angle, before the triangle is given up. With remove_vertices off, the vertices of the G given are not moved.
     bool move_vertices = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
@@ -69,7 +69,7 @@ struct RefineResult {
     int face_splits = 0;               ///< circumcentres inserted inside a patch
     int refused_splits = 0;            ///< splits that split_edge() or split_face() refused (G kept as it was)
     int removed_vertices = 0;          ///< vertices taken out (RefineOptions::remove_vertices)
-    int moved_vertices = 0;            ///< vertices moved within their star, to raise a corner
+    int moved_vertices = 0;            ///< vertices moved within their star, to raise a corner or narrow one
     int moves_onto_saddles = 0;        ///< of those, the moves onto a saddle of T that a geodesic bent at
     int flips = 0;
     int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
