@@ -388,18 +388,10 @@ private:
 
         /// The first face below the angle for which `take(face index)` holds, or an invalid handle.
         template <class Take>
-        FaceHandle first_below(Take take) const {
-            for (const auto& [corner, f] : below_)
-                if (take(f)) return FaceHandle(f);
-            return FaceHandle();
-        }
+        FaceHandle first_below(Take take) const { return first_in(below_, take); }
         /// The first face with a corner above k_max_corner for which `take(face index)` holds, or an invalid handle.
         template <class Take>
-        FaceHandle first_wide(Take take) const {
-            for (const auto& [corner, f] : wide_)
-                if (take(f)) return FaceHandle(f);
-            return FaceHandle();
-        }
+        FaceHandle first_wide(Take take) const { return first_in(wide_, take); }
         template <class Take>
         std::size_t count_below(Take take) const {
             return static_cast<std::size_t>(
@@ -407,6 +399,13 @@ private:
         }
 
     private:
+        template <class Take>
+        static FaceHandle first_in(const std::set<std::pair<double, int>>& faces, Take take) {
+            for (const auto& [corner, f] : faces)
+                if (take(f)) return FaceHandle(f);
+            return FaceHandle();
+        }
+
         void measure(int f) {
             const std::size_t i = static_cast<std::size_t>(f);
             if (i >= ranges_.size()) ranges_.resize(i + 1);
