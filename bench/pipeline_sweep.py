@@ -4,10 +4,12 @@ with the geotri tools, and prints a Markdown table: faces, coarse faces, validit
 minimum corner angle) and at the end (with the conditions that failed), and the wall time of each tool, loading and
 writing included. G is refined only when flip made it valid.
 
-    bench/pipeline_sweep.py [--faces N] [--min-angle A] [--threads N] [--timeout S] [--build DIR] [--data DIR]
-                            [--keep DIR] [MESH ...]
+    bench/pipeline_sweep.py [--faces N | --coarsest] [--min-angle A] [--threads N] [--timeout S] [--build DIR]
+                            [--data DIR] [--keep DIR] [MESH ...]
 
-Meshes whose topology needs more than N faces are decimated to the coarsest that it allows instead. The outputs
+Where the topology stops decimation above N faces, the mesh is what geotri-decimate gives: that coarsest mesh, or
+a finer one where the coarsest one's geodesics tangle (it backs off). --coarsest decimates every mesh as coarse as
+its topology allows (geotri-decimate --coarsest), as a target of 4 faces did before the back-off. The outputs
 go to a temporary folder that is removed at the end, or with --keep to DIR, where they stay (MESH.off, .paths,
 .gtri, .flip.gtri, .refine.gtri, .vtu, named by the mesh's file name without its extension).
 """
@@ -66,17 +68,12 @@ def sweep_one(mesh, options, work):
         cells.append(f"{sum(times.values()):.2f}")
         return "| " + " | ".join(cells) + " |"
 
+    target = ["--coarsest"] if options.coarsest else ["--faces", str(options.faces)]
     code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--paths", f"{stem}.paths",
-                                                        "--faces", str(options.faces)],
+                                                        *target],
                                             options.build)
     if code != 0:
         return stop(f"refused: {err.splitlines()[-1] if err else code}")
-    if not dec["target_reached"]:  # the topology needs more faces: take the coarsest
-        code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--paths",
-                                                            f"{stem}.paths", "--coarsest"],
-                                                options.build)
-        if code != 0:
-            return stop(f"--coarsest refused: {err.splitlines()[-1] if err else code}")
     row += [str(dec["faces"]), str(dec["coarse_faces"])]
     code, _, times["trace"], err = run("trace", [str(mesh), f"{stem}.off", "--paths", f"{stem}.paths", "-o",
                                                      f"{stem}.gtri", *threads],
@@ -127,7 +124,9 @@ def main():
     global TIMEOUT
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("meshes", nargs="*", type=pathlib.Path)
-    parser.add_argument("--faces", type=int, default=320)
+    target = parser.add_mutually_exclusive_group()
+    target.add_argument("--faces", type=int, default=320)
+    target.add_argument("--coarsest", action="store_true", help="decimate as coarse as the topology allows")
     parser.add_argument("--threads", type=int, default=0)
     parser.add_argument("--min-angle", type=float, default=25.0, help="refine to this angle (0: no refinement)")
     parser.add_argument("--thorough", type=int, choices=[0, 1, 2],

@@ -1,20 +1,22 @@
 // geotri-decimate: a coarse mesh of a closed triangle mesh by halfedge collapses, with the coarse vertices at exact
 // positions of the input's vertices and every component's topology kept.
 //
-//   geotri-decimate INPUT -o COARSE (--faces N | --vertices N | --ratio R | --coarsest) [--paths PATHS] [--json]
-//                   [--quiet]
+//   geotri-decimate INPUT -o COARSE (--faces N | --vertices N | --ratio R | --coarsest) [--paths PATHS]
+//                   [--no-backoff] [--json] [--quiet]
 
 #include "output.h"
 #include "progress.h"
 #include "tool.h"
 
 #include <geotri/decimate.h>
+#include <geotri/decimate_backoff.h>
 #include <geotri/edge_paths_io.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/mesh_io.h>
 
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <string>
 
 namespace {
@@ -33,6 +35,7 @@ struct Arguments {
     bool coarsest = false;
     std::string strategy = "multiple-choice";
     std::string paths;
+    bool no_backoff = false;
 };
 
 int run(tools::Tool& tool) {
@@ -64,13 +67,18 @@ int run(tools::Tool& tool) {
         ->check(CLI::IsMember({"multiple-choice", "priority-queue"}));
     app.add_option("--paths", args.paths,
                    "Also write what each coarse edge is on the input, for geotri-trace --paths (a text file)");
+    app.add_flag("--no-backoff", args.no_backoff,
+                 "Where the topology stops decimation above the target, keep that mesh even when its geodesics\n"
+                 "tangle (by default it is traced, and decimated to twice the faces while the geodesics cross or\n"
+                 "leave their vertex out of order more than once per three edges)");
     tool.parse();
     tools::refuse_same_files({{"INPUT", args.input}}, {{"-o", args.output}, {"--paths", args.paths}});
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + args.input);
     const double load_start = tools::now_seconds();
-    const geotri::FineMesh fine = geotri::load_fine_mesh(args.input);
+    const auto shared_fine = std::make_shared<const geotri::FineMesh>(geotri::load_fine_mesh(args.input));
+    const geotri::FineMesh& fine = *shared_fine;
     const double load_seconds = tools::now_seconds() - load_start;
 
     geotri::DecimateOptions options;
@@ -88,7 +96,14 @@ int run(tools::Tool& tool) {
     };
     progress.stage("decimating: faces removed");
     const double decimate_start = tools::now_seconds();
-    const geotri::DecimateResult result = geotri::decimate(fine, options);
+    geotri::BackoffOptions backoff;
+    backoff.threads = tool.common.threads;
+    backoff.tracing = [&progress](std::size_t faces) {
+        progress.stage("tracing the " + std::to_string(faces) + "-face mesh to see how its geodesics tangle");
+    };
+    const geotri::BackoffResult backed = args.no_backoff ? geotri::BackoffResult{geotri::decimate(fine, options), {}}
+                                                         : geotri::decimate_backing_off(shared_fine, options, backoff);
+    const geotri::DecimateResult& result = backed.decimation;
     const double decimate_seconds = tools::now_seconds() - decimate_start;
 
     progress.stage("writing " + args.output);
@@ -118,6 +133,13 @@ int run(tools::Tool& tool) {
         summary.add("coarse_vertices", coarse_vertices);
         summary.add("coarse_faces", coarse_faces);
         summary.add("target_reached", result.target_reached);
+        summary.add("backed_off", backed.backed_off());
+        if (!backed.levels.empty()) {
+            summary.add("faces_where_topology_stops", backed.levels.front().faces);
+            summary.add("tangled_where_topology_stops", backed.levels.front().tangled);
+            summary.add("edges_where_topology_stops", backed.levels.front().edges);
+            summary.add("tangled", backed.levels.back().tangled);
+        }
         summary.add("strategy", args.strategy);
         summary.add("load_seconds", load_seconds);
         summary.add("decimate_seconds", decimate_seconds);
@@ -136,6 +158,18 @@ int run(tools::Tool& tool) {
             std::fprintf(stderr, "%s: target of %zu faces not reached: the topology needs at least %d, and no further "
                                  "collapse keeps it and the triangles' shape\n",
                          tool.program().c_str(), result.target_faces, min_faces);
+        }
+        if (!backed.levels.empty()) {
+            const geotri::BackoffLevel& first = backed.levels.front();
+            std::fprintf(stderr, "%s: traced there, its %zu edges' geodesics have %d crossings and vertices out of "
+                                 "order%s\n",
+                         tool.program().c_str(), first.edges, first.tangled,
+                         backed.backed_off() ? "" : ", few enough to untangle: kept");
+            if (backed.backed_off())
+                std::fprintf(stderr, "%s: backed off to %zu faces, where %zu edges have %d (--no-backoff keeps the "
+                                     "coarsest)\n",
+                             tool.program().c_str(), backed.levels.back().faces, backed.levels.back().edges,
+                             backed.levels.back().tangled);
         }
     }
     return tools::k_exit_ok;

@@ -40,7 +40,8 @@ case "$case_name" in
 help_lists_every_option)
     run --help
     expect_rc 0
-    for option in INPUT --output --faces --vertices --ratio --coarsest --paths --json --quiet --threads --version --help; do
+    for option in INPUT --output --faces --vertices --ratio --coarsest --paths --no-backoff --json --quiet --threads \
+        --version --help; do
         grep -q -- "$option" stdout || fail "--help does not mention $option"
     done
     ;;
@@ -200,6 +201,21 @@ unreachable_target_says_so)
     run "$bob" -o out.off --faces 4
     expect_rc 0
     grep -q "not reached" stderr || fail "no word that the target was not reached"
+    ;;
+
+unreachable_target_is_traced_and_no_backoff_skips_that)
+    # bob's coarsest mesh (18 faces) tangles too little to back off from: the same mesh either way.
+    run "$bob" -o out.off --faces 4 --json
+    expect_rc 0
+    [ "$(json_value backed_off)" = false ] || fail "backed off from bob's coarsest mesh"
+    [ "$(json_value faces_where_topology_stops)" = 18 ] || fail "not traced where the topology stops"
+    [ "$(json_value tangled_where_topology_stops)" -gt 0 ] || fail "no tangles counted"
+    grep -q "traced there" stderr || fail "no word of the tracing on stderr"
+    mv out.off traced.off
+    run "$bob" -o out.off --faces 4 --json --no-backoff
+    expect_rc 0
+    [ -z "$(json_value faces_where_topology_stops)" ] || fail "traced with --no-backoff"
+    cmp -s out.off traced.off || fail "another mesh with --no-backoff"
     ;;
 
 error_empty_file)

@@ -1,0 +1,121 @@
+// decimate_backing_off(): where the target is reached, or the coarsest mesh is asked for, it is decimate() itself;
+// where the topology stops decimation, each level is traced and its tangles counted as trace() and validate() count
+// them independently of it, the levels double, and the mesh kept is the one that decimate() gives for its face
+// count. On stress/cheese.off (shared data, genus 133) it backs off to a level that the limit accepts.
+
+#include <geotri/decimate.h>
+#include <geotri/decimate_backoff.h>
+#include <geotri/edge_paths_io.h>
+#include <geotri/fine_mesh.h>
+#include <geotri/geodesic_triangulation.h>
+#include <geotri/trace.h>
+#include <geotri/validate.h>
+#include <geotri_test/procedural_meshes.h>
+#include <geotri_test/shared_data.h>
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+namespace geotri {
+namespace {
+
+std::shared_ptr<const FineMesh> bundled_bob() {  // genus 1, 500 faces: a target of 4 faces stops at 18
+    return std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
+}
+
+DecimateOptions faces_target(std::size_t faces) {
+    DecimateOptions options;
+    options.target_faces = faces;
+    return options;
+}
+
+// Violations of conditions 2 and 3 of the decimation's coarse mesh traced in its class, counted here on a fully
+// validated G.
+int tangles_of(const std::shared_ptr<const FineMesh>& fine, const DecimateResult& decimation) {
+    GeodesicTriangulation g(fine, make_coarse_mesh(decimation.coarse, "level"));
+    const EdgePaths paths = make_edge_paths(*fine, decimation);
+    TraceOptions options;
+    options.edge_paths = &paths;
+    trace(g, options);
+    const ValidationReport report = validate(g);
+    return report.violation_count[1] + report.violation_count[2];
+}
+
+TEST(DecimateBackoff, a_reached_target_is_decimate_itself) {
+    const auto fine = std::make_shared<const FineMesh>(
+        make_fine_mesh(MeshData{test::icosphere(3).positions, test::icosphere(3).triangles}, "icosphere"));
+    const BackoffResult result = decimate_backing_off(fine, faces_target(60));
+    EXPECT_TRUE(result.levels.empty());
+    EXPECT_FALSE(result.backed_off());
+    EXPECT_TRUE(result.decimation.target_reached);
+    EXPECT_EQ(result.decimation.coarse.triangles, decimate(*fine, faces_target(60)).coarse.triangles);
+}
+
+TEST(DecimateBackoff, the_coarsest_asked_for_is_kept_however_tangled) {
+    const auto fine = bundled_bob();
+    DecimateOptions coarsest;
+    coarsest.coarsest = true;
+    BackoffOptions always;
+    always.max_tangled_per_edge = -1.0;  // every level is too tangled
+    const BackoffResult result = decimate_backing_off(fine, coarsest, always);
+    EXPECT_TRUE(result.levels.empty());
+    EXPECT_EQ(result.decimation.coarse.triangles, decimate(*fine, coarsest).coarse.triangles);
+}
+
+TEST(DecimateBackoff, a_level_tangled_within_the_limit_is_kept_and_counted) {
+    const auto fine = bundled_bob();
+    const BackoffResult result = decimate_backing_off(fine, faces_target(4));
+    ASSERT_EQ(result.levels.size(), 1u);
+    EXPECT_FALSE(result.backed_off());
+    const DecimateResult plain = decimate(*fine, faces_target(4));
+    EXPECT_FALSE(plain.target_reached);
+    EXPECT_EQ(result.decimation.coarse.triangles, plain.coarse.triangles);
+    EXPECT_EQ(result.levels[0].faces, plain.coarse.triangles.size());
+    EXPECT_EQ(result.levels[0].edges, plain.edges.size());
+    EXPECT_EQ(result.levels[0].tangled, tangles_of(fine, plain));
+    EXPECT_GT(result.levels[0].tangled, 0);  // bob's coarsest geodesics do tangle: the count means something
+    EXPECT_LE(3 * result.levels[0].tangled, static_cast<int>(result.levels[0].edges));
+}
+
+TEST(DecimateBackoff, too_tangled_levels_double_within_the_rounds_and_the_fine_mesh) {
+    const auto fine = bundled_bob();
+    BackoffOptions always;
+    always.max_tangled_per_edge = -1.0;
+    DecimateOptions options = faces_target(4);
+    options.edge_paths = false;
+    const BackoffResult four_rounds = decimate_backing_off(fine, options, always);
+    ASSERT_EQ(four_rounds.levels.size(), 5u);  // 18, 36, 72, 144, 288
+    for (std::size_t i = 1; i < four_rounds.levels.size(); ++i)
+        EXPECT_EQ(four_rounds.levels[i].faces, 2 * four_rounds.levels[i - 1].faces);
+    const DecimateResult& kept = four_rounds.decimation;
+    EXPECT_EQ(kept.coarse.triangles.size(), four_rounds.levels.back().faces);
+    EXPECT_EQ(kept.coarse.triangles, decimate(*fine, faces_target(four_rounds.levels.back().faces)).coarse.triangles);
+    EXPECT_FALSE(kept.target_reached);  // the target asked for is still 4 faces
+    EXPECT_EQ(kept.target_faces, 4u);
+    EXPECT_TRUE(kept.edges.empty());  // not asked for
+
+    always.max_rounds = 10;  // 576 would be more faces than bob has
+    const BackoffResult ten_rounds = decimate_backing_off(fine, options, always);
+    EXPECT_EQ(ten_rounds.levels.size(), 5u);
+    EXPECT_EQ(ten_rounds.decimation.coarse.triangles, kept.coarse.triangles);
+}
+
+TEST(DecimateBackoff, cheese_backs_off_from_the_coarsest_mesh_to_one_that_untangles) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at " << test::configured_shared_data_dir();
+    const auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh("stress/cheese.off").path));
+    const BackoffResult result = decimate_backing_off(fine, faces_target(320));
+    ASSERT_EQ(result.levels.size(), 2u);
+    const BackoffLevel& stopped = result.levels.front();
+    const BackoffLevel& kept = result.levels.back();
+    EXPECT_GT(3 * stopped.tangled, static_cast<int>(stopped.edges));  // 1141 for 1761 edges at 1174 faces
+    EXPECT_LE(3 * kept.tangled, static_cast<int>(kept.edges));         // 363 for 3522 at 2348
+    EXPECT_EQ(kept.faces, 2 * stopped.faces);
+    EXPECT_EQ(result.decimation.coarse.triangles.size(), kept.faces);
+    EXPECT_EQ(kept.tangled, tangles_of(fine, result.decimation));
+}
+
+}  // namespace
+}  // namespace geotri
