@@ -6,43 +6,120 @@
 
 namespace geotri {
 
+namespace {
+
+// Whether the two meshes have the same properties in the same places (same names), as every G made by the
+// constructor has: then assign() can copy each by its handle.
+template <class Iterator>
+bool same_names(Iterator a, Iterator a_end, Iterator b, Iterator b_end) {
+    for (; a != a_end && b != b_end; ++a, ++b) {
+        if ((*a == nullptr) != (*b == nullptr)) return false;
+        if (*a && (*a)->name() != (*b)->name()) return false;
+    }
+    return a == a_end && b == b_end;
+}
+
+bool same_properties(const CoarseMesh& a, const CoarseMesh& b) {
+    return same_names(a.vprops_begin(), a.vprops_end(), b.vprops_begin(), b.vprops_end()) &&
+           same_names(a.hprops_begin(), a.hprops_end(), b.hprops_begin(), b.hprops_end()) &&
+           same_names(a.eprops_begin(), a.eprops_end(), b.eprops_begin(), b.eprops_end()) &&
+           same_names(a.fprops_begin(), a.fprops_end(), b.fprops_begin(), b.fprops_end());
+}
+
+}  // namespace
+
 GeodesicTriangulation::GeodesicTriangulation(std::shared_ptr<const FineMesh> fine, CoarseMesh coarse)
-    : fine_(std::move(fine)), coarse_(std::move(coarse)) {
-    coarse_.add_property(location_, "geotri:location");
-    coarse_.add_property(polyline_, "geotri:polyline");
-    coarse_.add_property(length_, "geotri:length");
-    for (auto v : coarse_.vertices()) coarse_.property(location_, v) = SurfacePoint::at_vertex(-1);
-    for (auto e : coarse_.edges()) coarse_.property(length_, e) = 0.0;
+    : fine_(std::move(fine)), coarse_(std::make_unique<CoarseMesh>(std::move(coarse))) {
+    coarse_->add_property(location_, "geotri:location");
+    coarse_->add_property(polyline_, "geotri:polyline");
+    coarse_->add_property(length_, "geotri:length");
+    for (auto v : coarse_->vertices()) coarse_->property(location_, v) = SurfacePoint::at_vertex(-1);
+    for (auto e : coarse_->edges()) coarse_->property(length_, e) = 0.0;
+}
+
+GeodesicTriangulation::GeodesicTriangulation(const GeodesicTriangulation& other)
+    : fine_(other.fine_), coarse_(std::make_unique<CoarseMesh>(*other.coarse_)), location_(other.location_),
+      polyline_(other.polyline_), length_(other.length_) {}
+
+GeodesicTriangulation& GeodesicTriangulation::operator=(const GeodesicTriangulation& other) {
+    assign(other);
+    return *this;
+}
+
+GeodesicTriangulation& GeodesicTriangulation::operator=(GeodesicTriangulation&& other) {
+    // A copy all the same where this G has a coarse mesh: callers hold references to it across assignments.
+    if (coarse_) {
+        assign(other);
+        return *this;
+    }
+    fine_ = std::move(other.fine_);
+    coarse_ = std::move(other.coarse_);
+    location_ = other.location_;
+    polyline_ = other.polyline_;
+    length_ = other.length_;
+    return *this;
+}
+
+GeodesicTriangulation::~GeodesicTriangulation() = default;
+
+void GeodesicTriangulation::assign(const GeodesicTriangulation& other) {
+    if (this == &other) return;
+    if (!coarse_) {  // moved from: no storage to keep
+        *this = GeodesicTriangulation(other);  // move assignment takes the copy's coarse mesh
+        return;
+    }
+    fine_ = other.fine_;
+    if (!same_properties(*coarse_, *other.coarse_)) {  // a caller added or removed some: OpenMesh's own copy
+        *coarse_ = *other.coarse_;
+        location_ = other.location_;
+        polyline_ = other.polyline_;
+        length_ = other.length_;
+        return;
+    }
+    // The connectivity by vector assignment (which keeps a large enough capacity), resizing every property; then
+    // the status flags (which OpenMesh's assign_connectivity() leaves as they were), the points and G's own
+    // properties the same way: a polyline pointer that is the same is not even counted again.
+    CoarseMesh& mesh = *coarse_;
+    const CoarseMesh& from = *other.coarse_;
+    mesh.assign_connectivity(from);
+    mesh.property(mesh.vertex_status_pph()) = from.property(from.vertex_status_pph());
+    mesh.property(mesh.halfedge_status_pph()) = from.property(from.halfedge_status_pph());
+    mesh.property(mesh.edge_status_pph()) = from.property(from.edge_status_pph());
+    mesh.property(mesh.face_status_pph()) = from.property(from.face_status_pph());
+    mesh.property(mesh.points_pph()) = from.property(from.points_pph());
+    mesh.property(location_) = from.property(other.location_);
+    mesh.property(polyline_) = from.property(other.polyline_);
+    mesh.property(length_) = from.property(other.length_);
 }
 
 void GeodesicTriangulation::set_location(OpenMesh::VertexHandle v, const SurfacePoint& p) {
     const SurfacePoint canonical = fine_->mesh.canonical(p);
-    coarse_.property(location_, v) = canonical;
+    coarse_->property(location_, v) = canonical;
     const Eigen::Vector3d x = fine_->mesh.point(canonical);
-    coarse_.set_point(v, CoarseMesh::Point(x.x(), x.y(), x.z()));
+    coarse_->set_point(v, CoarseMesh::Point(x.x(), x.y(), x.z()));
 }
 
 const Polyline& GeodesicTriangulation::polyline(OpenMesh::EdgeHandle e) const {
     static const Polyline none;
-    const std::shared_ptr<const Polyline>& shared = coarse_.property(polyline_, e);
+    const std::shared_ptr<const Polyline>& shared = coarse_->property(polyline_, e);
     return shared ? *shared : none;
 }
 
 Polyline GeodesicTriangulation::path(OpenMesh::HalfedgeHandle h) const {
-    Polyline p = polyline(coarse_.edge_handle(h));
-    if (h != coarse_.halfedge_handle(coarse_.edge_handle(h), 0)) std::reverse(p.begin(), p.end());
+    Polyline p = polyline(coarse_->edge_handle(h));
+    if (h != coarse_->halfedge_handle(coarse_->edge_handle(h), 0)) std::reverse(p.begin(), p.end());
     return p;
 }
 
 void GeodesicTriangulation::set_polyline(OpenMesh::EdgeHandle e, Polyline polyline) {
     for (SurfacePoint& p : polyline) p = fine_->mesh.canonical(p);  // one representation per point (DESIGN.md §1)
-    coarse_.property(length_, e) = geodesic::path_length(fine_->mesh, polyline);
-    coarse_.property(polyline_, e) = std::make_shared<const Polyline>(std::move(polyline));
+    coarse_->property(length_, e) = geodesic::path_length(fine_->mesh, polyline);
+    coarse_->property(polyline_, e) = std::make_shared<const Polyline>(std::move(polyline));
 }
 
 void GeodesicTriangulation::set_path(OpenMesh::HalfedgeHandle h, Polyline path) {
-    const OpenMesh::EdgeHandle e = coarse_.edge_handle(h);
-    if (h != coarse_.halfedge_handle(e, 0)) std::reverse(path.begin(), path.end());
+    const OpenMesh::EdgeHandle e = coarse_->edge_handle(h);
+    if (h != coarse_->halfedge_handle(e, 0)) std::reverse(path.begin(), path.end());
     set_polyline(e, std::move(path));
 }
 

@@ -513,10 +513,20 @@ private:
     /// Without whole checks, true: the local checks of the operations are what keeps G valid.
     bool valid_whole(const GeodesicTriangulation& trial) const { return !whole_checks_ || validate(trial).valid; }
 
+    /// A copy of G to try an operation on, in the storage of `slot` where it has some: copying G for every split
+    /// and move tried, into new storage, cost more than the operations on a G of thousands of faces (cheese at 25
+    /// degrees: PropertyT::clone(), malloc() and free() were a third of refinement).
+    GeodesicTriangulation& trial_copy(std::optional<GeodesicTriangulation>& slot) const {
+        if (slot) *slot = g_;
+        else slot.emplace(g_);
+        return *slot;
+    }
+
     /// G becomes `next`, a changed copy whose faces that differ from G's are `changed` (indices), or, where `next`
-    /// was renumbered (a removal collects its garbage), any of them.
-    void replace_g(GeodesicTriangulation&& next, const std::vector<int>* changed) {
-        g_ = std::move(next);
+    /// was renumbered (a removal collects its garbage), any of them. Copied into G's storage (the coarse mesh stays
+    /// the same object), and `next` keeps its own for another trial.
+    void replace_g(const GeodesicTriangulation& next, const std::vector<int>* changed) {
+        g_ = next;
         if (!changed) renumbered_ = true;
         else if (!renumbered_) changed_faces_.insert(changed_faces_.end(), changed->begin(), changed->end());
     }
@@ -531,7 +541,7 @@ private:
     enum class Tried { kept, refused_split, refused_shape };
     template <class Split>
     Tried try_split(Split split, double floor, double min_length, int& counter, double changed_floor = 0.0) {
-        GeodesicTriangulation trial = g_;
+        GeodesicTriangulation& trial = trial_copy(split_trial_);
         const SplitResult done = split(trial);
         if (!done.done) {
             ++result_.refused_splits;
@@ -553,7 +563,7 @@ private:
             ++result_.refused_splits;
             return Tried::refused_shape;
         }
-        replace_g(std::move(trial), &changed);
+        replace_g(trial, &changed);
         ++counter;
         ++new_vertices_;
         result_.flips += flips.improve_flips;
@@ -756,7 +766,7 @@ private:
             best_flips = flips.improve_flips;
         }
         if (!best) return false;
-        replace_g(std::move(*best), nullptr);
+        replace_g(*best, nullptr);
         ++result_.removed_vertices;
         result_.flips += best_flips;
         return true;
@@ -774,7 +784,8 @@ private:
         VertexHandle vertex;
         std::optional<SurfacePoint> target;  ///< where to move it; none: the centroid of its star
         std::vector<double> key;  ///< star_key() before the move, with the target
-        std::optional<GeodesicTriangulation> moved;  ///< set where the move is one to keep
+        std::optional<GeodesicTriangulation>* slot = nullptr;  ///< the storage of its trial copy of G
+        GeodesicTriangulation* moved = nullptr;  ///< the trial, set where the move is one to keep
         std::vector<int> changed;  ///< the faces that the move and its flips changed
         double score = 0.0;        ///< the higher the better: their smallest corner after, or minus the widest
         int flips = 0;
@@ -805,12 +816,14 @@ private:
                     append_key(key, *target);
                 }
                 if (goal.narrow || !failed_moves_.count(key))
-                    candidates.push_back({v, target, std::move(key), {}, {}, 0.0, 0, false});
+                    candidates.push_back({v, target, std::move(key), nullptr, nullptr, {}, 0.0, 0, false});
             };
             if (!goal.onto_saddles) add(std::nullopt);
             else
                 for (int saddle : saddles_on_edges_of(f, v)) add(SurfacePoint::at_vertex(saddle));
         }
+        if (move_trials_.size() < candidates.size()) move_trials_.resize(candidates.size());
+        for (std::size_t k = 0; k < candidates.size(); ++k) candidates[k].slot = &move_trials_[k];
         detail::for_each_with_propagation(
             g_.fine().mesh, candidates.size(), flip_options_.threads,
             [&](std::size_t k, geodesic::ExactGeodesic& propagation) { try_move(candidates[k], propagation, goal); },
@@ -833,7 +846,7 @@ private:
         const SurfacePoint& to = best->moved->location(best->vertex);
         if (to.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(to.vertex);
         if (best->target) ++result_.moves_onto_saddles;
-        replace_g(std::move(*best->moved), &best->changed);
+        replace_g(*best->moved, &best->changed);
         ++result_.moved_vertices;
         result_.flips += best->flips;
         return true;
@@ -847,14 +860,14 @@ private:
         try {
             try_move_or_throw(c, propagation, goal);
         } catch (const NumericalError&) {
-            c.moved.reset();
+            c.moved = nullptr;
             c.numerical_trouble = true;
         }
     }
     void try_move_or_throw(MoveCandidate& c, geodesic::ExactGeodesic& propagation, const MoveGoal& goal) const {
         const std::optional<SurfacePoint> target = c.target ? c.target : star_centroid(c.vertex);
         if (!target) return;
-        GeodesicTriangulation trial = g_;
+        GeodesicTriangulation& trial = trial_copy(*c.slot);
         if (!relocate_vertex_in_star(trial, c.vertex, *target, &propagation).done) return;
         const CoarseMesh& coarse = trial.coarse();
         FlipToDelaunayResult flips;
@@ -883,7 +896,7 @@ private:
             c.score = after.smallest;
         }
         if (!valid_whole(trial)) return;
-        c.moved.emplace(std::move(trial));
+        c.moved = &trial;
         c.changed = std::move(changed);
         c.flips = flips.improve_flips;
     }
@@ -1149,6 +1162,8 @@ private:
     std::vector<ShortEdge> short_given_edges_;  ///< the edges of the G given shorter than min_edge_
     std::set<std::vector<double>> failed_stars_;  ///< star_key() of the removals tried without success
     std::set<std::vector<double>> failed_moves_;  ///< star_key() of the moves tried without success
+    std::optional<GeodesicTriangulation> split_trial_;  ///< storage for the splits' trial copies of G
+    std::vector<std::optional<GeodesicTriangulation>> move_trials_;  ///< and for those of the moves tried together
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;

@@ -183,6 +183,49 @@ TEST_F(Trace, a_copy_of_g_changes_independently_of_the_original) {
     EXPECT_NE(&copy.polyline(e), &g.polyline(e));
 }
 
+// Assignment copies into the coarse mesh that G has (callers hold references to it), in its storage; it copies
+// everything that a copy does: connectivity, status flags, points, locations, polylines (shared) and lengths, and
+// properties that a caller added. Construction by move takes the coarse mesh itself.
+TEST_F(Trace, assignment_copies_everything_into_the_coarse_mesh_that_g_has) {
+    const auto fine = fine_file(geotri::test::torus(3.0, 1.0, 48, 24), "torus.off");
+    GeodesicTriangulation g(fine, geotri::make_coarse_mesh(coarse_torus(fine->mesh, 48, 24, 8, 6), "coarse torus"));
+    geotri::trace(g);
+    g.coarse().status(OpenMesh::FaceHandle(3)).set_tagged(true);
+    GeodesicTriangulation other(fine,
+                                geotri::make_coarse_mesh(coarse_torus(fine->mesh, 48, 24, 12, 8), "finer torus"));
+    geotri::trace(other);
+    const geotri::CoarseMesh* storage = &other.coarse();
+    other = g;
+    EXPECT_EQ(&other.coarse(), storage);
+    EXPECT_EQ(other.coarse().n_faces(), g.coarse().n_faces());
+    EXPECT_TRUE(other.coarse().status(OpenMesh::FaceHandle(3)).tagged());
+    EXPECT_FALSE(other.coarse().status(OpenMesh::FaceHandle(4)).tagged());
+    EXPECT_EQ(&other.polyline(OpenMesh::EdgeHandle(0)), &g.polyline(OpenMesh::EdgeHandle(0)));
+    const std::string g_text = gtri_text(g, dir_ / "g.gtri");
+    EXPECT_EQ(gtri_text(other, dir_ / "other.gtri"), g_text);
+    other.set_polyline(OpenMesh::EdgeHandle(0), {g.polyline(OpenMesh::EdgeHandle(0)).front()});
+    EXPECT_NE(other.polyline(OpenMesh::EdgeHandle(0)), g.polyline(OpenMesh::EdgeHandle(0)));
+
+    // By move: into the same coarse mesh too.
+    GeodesicTriangulation source = g;
+    other = std::move(source);
+    EXPECT_EQ(&other.coarse(), storage);
+    EXPECT_EQ(gtri_text(other, dir_ / "other.gtri"), g_text);
+    // Constructed by move: the coarse mesh itself, no copy.
+    GeodesicTriangulation taken(std::move(other));
+    EXPECT_EQ(&taken.coarse(), storage);
+
+    // A property that a caller added goes with the copy.
+    OpenMesh::VPropHandleT<int> mark;
+    g.coarse().add_property(mark, "test:mark");
+    for (auto v : g.coarse().vertices()) g.coarse().property(mark, v) = v.idx() * 7;
+    taken = g;
+    OpenMesh::VPropHandleT<int> copied;
+    ASSERT_TRUE(taken.coarse().get_property_handle(copied, "test:mark"));
+    for (auto v : g.coarse().vertices()) EXPECT_EQ(taken.coarse().property(copied, v), v.idx() * 7);
+    EXPECT_EQ(gtri_text(taken, dir_ / "other.gtri"), g_text);
+}
+
 TEST_F(Trace, output_is_identical_for_any_thread_count) {
     const auto fine = fine_file(geotri::test::torus(3.0, 1.0, 48, 24), "torus.off");
     const geotri::CoarseMesh coarse = geotri::make_coarse_mesh(coarse_torus(fine->mesh, 48, 24, 6, 4), "coarse");

@@ -29,18 +29,32 @@ using CoarseMesh = OpenMesh::TriMesh_ArrayKernelT<CoarseTraits>;
 
 /// G: the coarse mesh, the location of each coarse vertex on T, and the polyline and length of each coarse edge.
 /// Copies are independent (the fine mesh is shared, and so are the polylines, which are never changed in place but
-/// replaced): an operation that may be refused can work on a copy, and copying costs no polyline.
+/// replaced): an operation that may be refused can work on a copy, and copying costs no polyline. Assigning to a G,
+/// by copy or by move, copies into the coarse mesh that it has, which stays the same object (references to
+/// coarse() stay valid) and keeps its storage (assign()). Constructing one by move takes the other's coarse mesh
+/// without a copy (OpenMesh's meshes have no move operations: their "moves" copied everything); the G moved from may
+/// then only be assigned to or destroyed.
 class GeodesicTriangulation {
 public:
     /// Takes the coarse mesh as it is; locations and polylines start empty (location: vertex -1; polyline: none).
     GeodesicTriangulation(std::shared_ptr<const FineMesh> fine, CoarseMesh coarse);
+    GeodesicTriangulation(const GeodesicTriangulation& other);
+    GeodesicTriangulation(GeodesicTriangulation&& other) noexcept = default;
+    GeodesicTriangulation& operator=(const GeodesicTriangulation& other);
+    GeodesicTriangulation& operator=(GeodesicTriangulation&& other);
+    ~GeodesicTriangulation();
 
     const FineMesh& fine() const { return *fine_; }
     const std::shared_ptr<const FineMesh>& shared_fine() const { return fine_; }
-    CoarseMesh& coarse() { return coarse_; }
-    const CoarseMesh& coarse() const { return coarse_; }
 
-    const SurfacePoint& location(OpenMesh::VertexHandle v) const { return coarse_.property(location_, v); }
+    /// Becomes a copy of `other` in the storage that this G has, where it is large enough: a trial G that becomes G
+    /// again and again allocates nothing once it has grown, and shares what it shared before (the polylines of the
+    /// edges that did not change). Properties that a caller added to coarse() are resized, not copied.
+    void assign(const GeodesicTriangulation& other);
+    CoarseMesh& coarse() { return *coarse_; }
+    const CoarseMesh& coarse() const { return *coarse_; }
+
+    const SurfacePoint& location(OpenMesh::VertexHandle v) const { return coarse_->property(location_, v); }
     /// Sets the location and moves the coarse point to its 3D position on T.
     void set_location(OpenMesh::VertexHandle v, const SurfacePoint& p);
 
@@ -54,11 +68,11 @@ public:
     void set_polyline(OpenMesh::EdgeHandle e, Polyline polyline);
     /// Sets the polyline of h's edge from a path oriented along h.
     void set_path(OpenMesh::HalfedgeHandle h, Polyline path);
-    double length(OpenMesh::EdgeHandle e) const { return coarse_.property(length_, e); }
+    double length(OpenMesh::EdgeHandle e) const { return coarse_->property(length_, e); }
 
 private:
     std::shared_ptr<const FineMesh> fine_;
-    CoarseMesh coarse_;
+    std::unique_ptr<CoarseMesh> coarse_;  // on the heap, so that moving G moves a pointer
     OpenMesh::VPropHandleT<SurfacePoint> location_;
     OpenMesh::EPropHandleT<std::shared_ptr<const Polyline>> polyline_;  // null: not traced
     OpenMesh::EPropHandleT<double> length_;
