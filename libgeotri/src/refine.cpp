@@ -24,7 +24,6 @@
 #include <limits>
 #include <optional>
 #include <set>
-#include <unordered_set>
 
 namespace geotri {
 
@@ -1114,9 +1113,18 @@ private:
         const geodesic::Mesh& mesh = g_.fine().mesh;
         const Eigen::Vector3d x = mesh.point(p);
         std::vector<int> stack;
-        std::unordered_set<int> seen_faces;
+        // Faces seen are stamped with this search's number: a set of them cost a node allocation per face.
+        if (face_stamp_.empty()) face_stamp_.assign(static_cast<std::size_t>(mesh.num_faces()), 0);
+        if (++search_number_ == 0) {  // wrapped around: no stamp may look like this search's
+            std::fill(face_stamp_.begin(), face_stamp_.end(), 0u);
+            search_number_ = 1;
+        }
+        const unsigned stamp = search_number_;
+        std::size_t seen = 0;
         auto visit = [&](int f) {
-            if (!seen_faces.insert(f).second) return;
+            if (face_stamp_[static_cast<std::size_t>(f)] == stamp) return;
+            face_stamp_[static_cast<std::size_t>(f)] = stamp;
+            ++seen;
             double nearest = std::numeric_limits<double>::infinity(), longest = 0.0;
             for (int i = 0; i < 3; ++i) {
                 nearest = std::min(nearest, (mesh.position(mesh.triangle(f)[i]) - x).norm());
@@ -1127,7 +1135,7 @@ private:
         for (int f : faces_holding(mesh, p)) visit(f);
         std::optional<int> best;
         double best_distance = radius;
-        while (!stack.empty() && seen_faces.size() < k_max_search_faces) {
+        while (!stack.empty() && seen < k_max_search_faces) {
             const int f = stack.back();
             stack.pop_back();
             for (int i = 0; i < 3; ++i) {
@@ -1162,6 +1170,8 @@ private:
     std::vector<ShortEdge> short_given_edges_;  ///< the edges of the G given shorter than min_edge_
     std::set<std::vector<double>> failed_stars_;  ///< star_key() of the removals tried without success
     std::set<std::vector<double>> failed_moves_;  ///< star_key() of the moves tried without success
+    mutable std::vector<unsigned> face_stamp_;  ///< per face of T: the last curved_vertex_near() that saw it
+    mutable unsigned search_number_ = 0;
     std::optional<GeodesicTriangulation> split_trial_;  ///< storage for the splits' trial copies of G
     std::vector<std::optional<GeodesicTriangulation>> move_trials_;  ///< and for those of the moves tried together
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
