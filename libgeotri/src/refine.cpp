@@ -239,17 +239,20 @@ public:
     }
 
     void bisect() {
-        std::set<int> refused;
+        std::vector<char> refused;  // per edge (splits add edges, and keep the others' indices)
         while (!cap_reached()) {
             const CoarseMesh& coarse = g_.coarse();
+            refused.resize(coarse.n_edges(), 0);
             EdgeHandle longest;
             for (EdgeHandle e : coarse.edges())
-                if (!refused.count(e.idx()) && (!longest.is_valid() || g_.length(e) > g_.length(longest))) longest = e;
+                if (!refused[static_cast<std::size_t>(e.idx())] &&
+                    (!longest.is_valid() || g_.length(e) > g_.length(longest)))
+                    longest = e;
             if (!longest.is_valid()) break;
             const bool too_long = options_.max_length > 0.0 && g_.length(longest) > options_.max_length;
             const bool too_few = options_.target_faces > 0 && static_cast<int>(coarse.n_faces()) < options_.target_faces;
             if (!too_long && !too_few) break;
-            if (!split_edge_somewhere(longest, min_edge_)) refused.insert(longest.idx());
+            if (!split_edge_somewhere(longest, min_edge_)) refused[static_cast<std::size_t>(longest.idx())] = 1;
             progress("bisection");
         }
     }
