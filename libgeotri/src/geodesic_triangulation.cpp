@@ -1,29 +1,46 @@
+// GCC 12 warns inside OpenMesh's headers when a coarse mesh is made here (the layout that every G has).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
 #include <geodesic/exact_geodesic.h>
 #include <geotri/geodesic_triangulation.h>
 
 #include <algorithm>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace geotri {
 
 namespace {
 
-// Whether the two meshes have the same properties in the same places (same names), as every G made by the
-// constructor has: then assign() can copy each by its handle.
-template <class Iterator>
-bool same_names(Iterator a, Iterator a_end, Iterator b, Iterator b_end) {
-    for (; a != a_end && b != b_end; ++a, ++b) {
-        if ((*a == nullptr) != (*b == nullptr)) return false;
-        if (*a && (*a)->name() != (*b)->name()) return false;
-    }
-    return a == a_end && b == b_end;
+// The names of a coarse mesh's properties, every kind, in their places ("" for an empty place).
+std::vector<std::string> property_names(const CoarseMesh& mesh) {
+    std::vector<std::string> names;
+    auto add = [&](auto begin, auto end) {
+        for (auto p = begin; p != end; ++p) names.push_back(*p ? (*p)->name() : std::string());
+        names.push_back("|");  // between kinds
+    };
+    add(mesh.vprops_begin(), mesh.vprops_end());
+    add(mesh.hprops_begin(), mesh.hprops_end());
+    add(mesh.eprops_begin(), mesh.eprops_end());
+    add(mesh.fprops_begin(), mesh.fprops_end());
+    add(mesh.mprops_begin(), mesh.mprops_end());
+    return names;
 }
 
-bool same_properties(const CoarseMesh& a, const CoarseMesh& b) {
-    return same_names(a.vprops_begin(), a.vprops_end(), b.vprops_begin(), b.vprops_end()) &&
-           same_names(a.hprops_begin(), a.hprops_end(), b.hprops_begin(), b.hprops_end()) &&
-           same_names(a.eprops_begin(), a.eprops_end(), b.eprops_begin(), b.eprops_end()) &&
-           same_names(a.fprops_begin(), a.fprops_end(), b.fprops_begin(), b.fprops_end());
+// Whether the mesh's properties are named `names` (property_names()), without building a list.
+bool has_property_names(const CoarseMesh& mesh, const std::vector<std::string>& names) {
+    std::size_t i = 0;
+    auto same = [&](auto begin, auto end) {
+        for (auto p = begin; p != end; ++p, ++i)
+            if (i >= names.size() || names[i] != (*p ? (*p)->name() : std::string())) return false;
+        return i < names.size() && names[i++] == "|";
+    };
+    return same(mesh.vprops_begin(), mesh.vprops_end()) && same(mesh.hprops_begin(), mesh.hprops_end()) &&
+           same(mesh.eprops_begin(), mesh.eprops_end()) && same(mesh.fprops_begin(), mesh.fprops_end()) &&
+           same(mesh.mprops_begin(), mesh.mprops_end()) && i == names.size();
 }
 
 }  // namespace
@@ -69,7 +86,11 @@ void GeodesicTriangulation::assign(const GeodesicTriangulation& other) {
         return;
     }
     fine_ = other.fine_;
-    if (!same_properties(*coarse_, *other.coarse_)) {  // a caller added or removed some: OpenMesh's own copy
+    // Only the properties that every G has (OpenMesh's own and G's) are copied one by one below; where a caller added
+    // or removed some, OpenMesh's whole copy.
+    static const std::vector<std::string> every_gs =
+        property_names(GeodesicTriangulation(nullptr, CoarseMesh()).coarse());
+    if (!has_property_names(*coarse_, every_gs) || !has_property_names(*other.coarse_, every_gs)) {
         *coarse_ = *other.coarse_;
         location_ = other.location_;
         polyline_ = other.polyline_;

@@ -224,6 +224,22 @@ TEST_F(Trace, assignment_copies_everything_into_the_coarse_mesh_that_g_has) {
     ASSERT_TRUE(taken.coarse().get_property_handle(copied, "test:mark"));
     for (auto v : g.coarse().vertices()) EXPECT_EQ(taken.coarse().property(copied, v), v.idx() * 7);
     EXPECT_EQ(gtri_text(taken, dir_ / "other.gtri"), g_text);
+    // Again, with the property on both: still copied.
+    for (auto v : g.coarse().vertices()) g.coarse().property(mark, v) = v.idx() * 11;
+    taken = g;
+    ASSERT_TRUE(taken.coarse().get_property_handle(copied, "test:mark"));
+    for (auto v : g.coarse().vertices()) EXPECT_EQ(taken.coarse().property(copied, v), v.idx() * 11);
+
+    // Into a G moved from, by copy and by move: it gets a coarse mesh again.
+    GeodesicTriangulation emptied(std::move(taken));
+    taken = g;
+    EXPECT_EQ(gtri_text(taken, dir_ / "other.gtri"), g_text);
+    GeodesicTriangulation emptied_again(std::move(taken));
+    GeodesicTriangulation source_again = g;
+    const geotri::CoarseMesh* source_storage = &source_again.coarse();
+    taken = std::move(source_again);
+    EXPECT_EQ(&taken.coarse(), source_storage);  // taken over, not copied
+    EXPECT_EQ(gtri_text(taken, dir_ / "other.gtri"), g_text);
 }
 
 TEST_F(Trace, output_is_identical_for_any_thread_count) {
