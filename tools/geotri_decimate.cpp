@@ -68,9 +68,9 @@ int run(tools::Tool& tool) {
     app.add_option("--paths", args.paths,
                    "Also write what each coarse edge is on the input, for geotri-trace --paths (a text file)");
     app.add_flag("--no-backoff", args.no_backoff,
-                 "Where the topology stops decimation above the target, keep that mesh even when its geodesics\n"
-                 "tangle (by default it is traced, and decimated to twice the faces while the geodesics cross or\n"
-                 "leave their vertex out of order more than once per three edges)");
+                 "Where the topology stops decimation above the target, keep that mesh even when its\n"
+                 "geodesics tangle (by default it is traced, and each component whose geodesics cross or\n"
+                 "leave their vertex out of order more than once per three edges gets twice its faces)");
     tool.parse();
     tools::refuse_same_files({{"INPUT", args.input}}, {{"-o", args.output}, {"--paths", args.paths}});
 
@@ -98,11 +98,10 @@ int run(tools::Tool& tool) {
     const double decimate_start = tools::now_seconds();
     geotri::BackoffOptions backoff;
     backoff.threads = tool.common.threads;
-    backoff.tracing = [&progress](std::size_t faces) {
-        progress.stage("tracing the " + std::to_string(faces) + "-face mesh to see how its geodesics tangle");
-    };
-    const geotri::BackoffResult backed = args.no_backoff ? geotri::BackoffResult{geotri::decimate(fine, options), {}}
-                                                         : geotri::decimate_backing_off(shared_fine, options, backoff);
+    backoff.stage = [&progress](const std::string& stage) { progress.stage(stage); };
+    geotri::BackoffResult backed;
+    if (args.no_backoff) backed.decimation = geotri::decimate(fine, options);
+    else backed = geotri::decimate_backing_off(shared_fine, options, backoff);
     const geotri::DecimateResult& result = backed.decimation;
     const double decimate_seconds = tools::now_seconds() - decimate_start;
 
@@ -133,12 +132,12 @@ int run(tools::Tool& tool) {
         summary.add("coarse_vertices", coarse_vertices);
         summary.add("coarse_faces", coarse_faces);
         summary.add("target_reached", result.target_reached);
-        summary.add("backed_off", backed.backed_off());
+        summary.add("backed_off", backed.backed_off);
         if (!backed.levels.empty()) {
             summary.add("faces_where_topology_stops", backed.levels.front().faces);
             summary.add("tangled_where_topology_stops", backed.levels.front().tangled);
             summary.add("edges_where_topology_stops", backed.levels.front().edges);
-            summary.add("tangled", backed.levels.back().tangled);
+            if (backed.levels.back().faces == coarse_faces) summary.add("tangled", backed.levels.back().tangled);
         }
         summary.add("strategy", args.strategy);
         summary.add("load_seconds", load_seconds);
@@ -155,21 +154,23 @@ int run(tools::Tool& tool) {
                      fine.num_components == 1 ? "" : "s", coarse_vertices, coarse_faces, load_seconds,
                      decimate_seconds);
         if (!result.target_reached) {
+            const std::size_t stopped_at = backed.levels.empty() ? coarse_faces : backed.levels.front().faces;
             std::fprintf(stderr, "%s: target of %zu faces not reached: the topology needs at least %d, and no further "
-                                 "collapse keeps it and the triangles' shape\n",
-                         tool.program().c_str(), result.target_faces, min_faces);
+                                 "collapse below %zu keeps it and the triangles' shape\n",
+                         tool.program().c_str(), result.target_faces, min_faces, stopped_at);
         }
         if (!backed.levels.empty()) {
             const geotri::BackoffLevel& first = backed.levels.front();
             std::fprintf(stderr, "%s: traced there, its %zu edges' geodesics have %d crossings and vertices out of "
                                  "order%s\n",
                          tool.program().c_str(), first.edges, first.tangled,
-                         backed.backed_off() ? "" : ", few enough to untangle: kept");
-            if (backed.backed_off())
-                std::fprintf(stderr, "%s: backed off to %zu faces, where %zu edges have %d (--no-backoff keeps the "
-                                     "coarsest)\n",
-                             tool.program().c_str(), backed.levels.back().faces, backed.levels.back().edges,
-                             backed.levels.back().tangled);
+                         backed.backed_off ? "" : ", few enough to untangle: kept");
+        }
+        if (backed.backed_off) {
+            const geotri::BackoffLevel& last = backed.levels.back();
+            std::fprintf(stderr, "%s: backed off to %zu faces", tool.program().c_str(), coarse_faces);
+            if (last.faces == coarse_faces) std::fprintf(stderr, ", where %zu edges have %d", last.edges, last.tangled);
+            std::fprintf(stderr, " (--no-backoff keeps the coarsest)\n");
         }
     }
     return tools::k_exit_ok;

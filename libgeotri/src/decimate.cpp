@@ -672,8 +672,21 @@ DecimateResult decimate(const FineMesh& fine, const DecimateOptions& options) {
     } else {
         target = std::size_t(std::floor(options.ratio * double(mesh.num_faces())));
     }
+    std::vector<int> shares;
+    if (options.component_targets.empty()) {
+        shares = split_target(target, result.components, areas);
+    } else {
+        if (options.component_targets.size() != n_components)
+            throw InvalidInput("decimate: " + std::to_string(options.component_targets.size()) +
+                               " component targets for " + std::to_string(n_components) + " components");
+        target = 0;
+        for (std::size_t c = 0; c < n_components; ++c) {
+            const DecimateComponent& info = result.components[c];
+            shares.push_back(std::clamp(options.component_targets[c], info.min_faces, info.fine_faces));
+            target += std::size_t(shares.back());
+        }
+    }
     result.target_faces = target;
-    const std::vector<int> shares = split_target(target, result.components, areas);
 
     ProgressSink sink(options, std::size_t(mesh.num_faces()), target);
     std::vector<std::vector<int>> coarse_vertices(n_components);

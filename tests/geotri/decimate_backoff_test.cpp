@@ -8,6 +8,7 @@
 #include <geotri/edge_paths_io.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/geodesic_triangulation.h>
+#include <geotri/mesh_io.h>
 #include <geotri/trace.h>
 #include <geotri/validate.h>
 #include <geotri_test/procedural_meshes.h>
@@ -48,7 +49,7 @@ TEST(DecimateBackoff, a_reached_target_is_decimate_itself) {
         make_fine_mesh(MeshData{test::icosphere(3).positions, test::icosphere(3).triangles}, "icosphere"));
     const BackoffResult result = decimate_backing_off(fine, faces_target(60));
     EXPECT_TRUE(result.levels.empty());
-    EXPECT_FALSE(result.backed_off());
+    EXPECT_FALSE(result.backed_off);
     EXPECT_TRUE(result.decimation.target_reached);
     EXPECT_EQ(result.decimation.coarse.triangles, decimate(*fine, faces_target(60)).coarse.triangles);
 }
@@ -68,7 +69,7 @@ TEST(DecimateBackoff, a_level_tangled_within_the_limit_is_kept_and_counted) {
     const auto fine = bundled_bob();
     const BackoffResult result = decimate_backing_off(fine, faces_target(4));
     ASSERT_EQ(result.levels.size(), 1u);
-    EXPECT_FALSE(result.backed_off());
+    EXPECT_FALSE(result.backed_off);
     const DecimateResult plain = decimate(*fine, faces_target(4));
     EXPECT_FALSE(plain.target_reached);
     EXPECT_EQ(result.decimation.coarse.triangles, plain.coarse.triangles);
@@ -86,20 +87,60 @@ TEST(DecimateBackoff, too_tangled_levels_double_within_the_rounds_and_the_fine_m
     DecimateOptions options = faces_target(4);
     options.edge_paths = false;
     const BackoffResult four_rounds = decimate_backing_off(fine, options, always);
+    EXPECT_TRUE(four_rounds.backed_off);
     ASSERT_EQ(four_rounds.levels.size(), 5u);  // 18, 36, 72, 144, 288
     for (std::size_t i = 1; i < four_rounds.levels.size(); ++i)
         EXPECT_EQ(four_rounds.levels[i].faces, 2 * four_rounds.levels[i - 1].faces);
     const DecimateResult& kept = four_rounds.decimation;
+    const DecimateResult direct = decimate(*fine, faces_target(four_rounds.levels.back().faces));
     EXPECT_EQ(kept.coarse.triangles.size(), four_rounds.levels.back().faces);
-    EXPECT_EQ(kept.coarse.triangles, decimate(*fine, faces_target(four_rounds.levels.back().faces)).coarse.triangles);
+    EXPECT_EQ(kept.coarse.triangles, direct.coarse.triangles);
     EXPECT_FALSE(kept.target_reached);  // the target asked for is still 4 faces
     EXPECT_EQ(kept.target_faces, 4u);
     EXPECT_TRUE(kept.edges.empty());  // not asked for
+    // Asked for, the edge paths are those of the mesh kept.
+    options.edge_paths = true;
+    const BackoffResult with_paths = decimate_backing_off(fine, options, always);
+    ASSERT_EQ(with_paths.decimation.edges.size(), direct.edges.size());
+    for (std::size_t i = 0; i < direct.edges.size(); ++i)
+        EXPECT_EQ(with_paths.decimation.edges[i].fine_path, direct.edges[i].fine_path);
 
     always.max_rounds = 10;  // 576 would be more faces than bob has
+    options.edge_paths = false;
     const BackoffResult ten_rounds = decimate_backing_off(fine, options, always);
     EXPECT_EQ(ten_rounds.levels.size(), 5u);
     EXPECT_EQ(ten_rounds.decimation.coarse.triangles, kept.coarse.triangles);
+}
+
+// Two components: bob, which the topology stops at 18 faces, and a sphere, which reaches its share of 4. Only bob
+// backs off; the sphere is decimated as before at every level.
+TEST(DecimateBackoff, only_the_component_that_the_topology_stopped_backs_off) {
+    const MeshData bob = read_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply");
+    const test::TriangleMesh sphere = test::icosphere(2);
+    MeshData both = bob;
+    const int offset = static_cast<int>(bob.positions.size());
+    for (const Eigen::Vector3d& p : sphere.positions) both.positions.push_back(p + Eigen::Vector3d(5.0, 0.0, 0.0));
+    for (const auto& t : sphere.triangles) both.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    const auto fine = std::make_shared<const FineMesh>(make_fine_mesh(both, "bob and a sphere"));
+    ASSERT_EQ(fine->num_components, 2);
+    const int bob_component = fine->component[0], sphere_component = 1 - bob_component;
+    BackoffOptions always;
+    always.max_tangled_per_edge = -1.0;
+    always.max_rounds = 2;
+    const BackoffResult result = decimate_backing_off(fine, faces_target(4), always);
+    ASSERT_EQ(result.levels.size(), 3u);
+    const DecimateComponent& bob_kept = result.decimation.components[static_cast<std::size_t>(bob_component)];
+    const DecimateComponent& sphere_kept = result.decimation.components[static_cast<std::size_t>(sphere_component)];
+    EXPECT_EQ(bob_kept.faces, 72);  // 18, 36, 72
+    EXPECT_EQ(sphere_kept.faces, 4);
+    EXPECT_EQ(result.levels.back().faces, 76u);
+    // The sphere's coarse vertices are those of its decimation alone.
+    const FineMesh sphere_alone = make_fine_mesh(MeshData{sphere.positions, sphere.triangles}, "sphere");
+    const DecimateResult alone = decimate(sphere_alone, faces_target(4));
+    std::vector<int> sphere_vertices;
+    for (int v : result.decimation.fine_vertex)
+        if (v >= offset) sphere_vertices.push_back(v - offset);
+    EXPECT_EQ(sphere_vertices, alone.fine_vertex);
 }
 
 TEST(DecimateBackoff, cheese_backs_off_from_the_coarsest_mesh_to_one_that_untangles) {
@@ -107,6 +148,7 @@ TEST(DecimateBackoff, cheese_backs_off_from_the_coarsest_mesh_to_one_that_untang
         GTEST_SKIP() << "shared meshes not found at " << test::configured_shared_data_dir();
     const auto fine = std::make_shared<const FineMesh>(load_fine_mesh(test::shared_mesh("stress/cheese.off").path));
     const BackoffResult result = decimate_backing_off(fine, faces_target(320));
+    EXPECT_TRUE(result.backed_off);
     ASSERT_EQ(result.levels.size(), 2u);
     const BackoffLevel& stopped = result.levels.front();
     const BackoffLevel& kept = result.levels.back();

@@ -381,6 +381,25 @@ TEST(Decimate, edge_paths_can_be_left_out) {
     EXPECT_TRUE(without.edges.empty());
 }
 
+TEST(Decimate, component_targets_replace_the_shares) {
+    const test::TriangleMesh a = test::icosphere(3), b = test::icosphere(3);
+    MeshData both{a.positions, a.triangles};
+    const int offset = static_cast<int>(a.positions.size());
+    for (const Eigen::Vector3d& p : b.positions) both.positions.push_back(p + Eigen::Vector3d(3.0, 0.0, 0.0));
+    for (const auto& t : b.triangles) both.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    const FineMesh fine = make_fine_mesh(both, "two spheres");
+    DecimateOptions options = faces_target(100);
+    options.component_targets = {40, 200};
+    const DecimateResult result = decimate(fine, options);
+    EXPECT_EQ(result.target_faces, 240u);
+    EXPECT_TRUE(result.target_reached);
+    EXPECT_EQ(result.components[0].faces + result.components[1].faces, 240);
+    EXPECT_EQ(result.components[static_cast<std::size_t>(fine.component[0])].faces, 40);
+    expect_valid_decimation(fine, result);
+    options.component_targets = {40};
+    EXPECT_THROW(decimate(fine, options), InvalidInput);
+}
+
 TEST(Decimate, min_faces_of_genus) {
     EXPECT_EQ(min_faces_of_genus(0), 4);
     EXPECT_EQ(min_faces_of_genus(1), 14);   // the 7-vertex torus

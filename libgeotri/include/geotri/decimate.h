@@ -38,6 +38,11 @@ struct DecimateOptions {
     std::size_t target_vertices = 0;  ///< at most this many vertices in all (0: unset)
     double ratio = 0.0;               ///< at most ratio · faces of T, 0 < ratio <= 1 (0: unset)
     bool coarsest = false;            ///< as coarse as each component's topology and the link condition allow
+    /// Per component of T (FineMesh::component numbering): the faces that it aims at, in place of its share of the
+    /// target (each at least the component's min_faces and at most its faces); empty: shares of the target. The
+    /// target is then their sum, whichever target is set. Backing off (decimate_backoff.h) gives a component whose
+    /// geodesics tangle more faces and leaves the others' decimation as it was.
+    std::vector<int> component_targets;
 
     DecimateStrategy strategy = DecimateStrategy::multiple_choice;
     /// multiple_choice: random draws per collapse. The priority queue takes over below max(20000, 8 · target)
@@ -92,7 +97,8 @@ struct DecimateResult {
 /// in proportion to their area, each getting at least min_faces. Collapses that worsen the shape least (by the
 /// quadric error of Garland and Heckbert) go first; near the end, the quality limits are relaxed step by step, to
 /// the hard limits above, before the target is given up. Deterministic: the same T and options give the same result.
-/// Throws InvalidInput when not exactly one target is set, or when ratio is outside (0, 1].
+/// Throws InvalidInput when not exactly one target is set, when ratio is outside (0, 1], or when component_targets
+/// is not empty and does not have one entry per component.
 DecimateResult decimate(const FineMesh& fine, const DecimateOptions& options);
 
 /// Fewest faces of a closed orientable triangulated surface of genus `genus` (Jungerman and Ringel): 4, 14, 24, ...
