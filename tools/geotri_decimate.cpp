@@ -164,7 +164,7 @@ int run(tools::Tool& tool) {
             std::fprintf(stderr, "%s: traced there, its %zu edges' geodesics have %d crossings and vertices out of "
                                  "order%s\n",
                          tool.program().c_str(), first.edges, first.tangled,
-                         backed.backed_off ? "" : ", few enough to untangle: kept");
+                         backed.backed_off ? "" : ": kept");
         }
         if (backed.backed_off) {
             const geotri::BackoffLevel& last = backed.levels.back();

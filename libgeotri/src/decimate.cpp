@@ -740,8 +740,9 @@ DecimateResult decimate(const FineMesh& fine, const DecimateOptions& options) {
               [](const DecimatedEdge& x, const DecimatedEdge& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
 
     result.aborted = sink.stopped();
-    result.target_reached = options.target_vertices > 0 ? result.coarse.positions.size() <= options.target_vertices
-                                                        : result.coarse.triangles.size() <= target;
+    result.target_reached = options.target_vertices > 0 && options.component_targets.empty()
+                                ? result.coarse.positions.size() <= options.target_vertices
+                                : result.coarse.triangles.size() <= target;
     return result;
 }
 

@@ -77,8 +77,12 @@ BackoffResult decimate_backing_off(const std::shared_ptr<const FineMesh>& fine, 
     DecimateOptions finer = options;
     finer.edge_paths = true;
     if (!options.edge_paths) {
-        result.decimation = decimate(*fine, finer);
-        if (result.decimation.aborted) return result;
+        DecimateResult with_paths = decimate(*fine, finer);
+        if (with_paths.aborted) {  // the mesh reached stands, without the back-off
+            result.decimation.aborted = true;
+            return result;
+        }
+        result.decimation = std::move(with_paths);
     }
     // Only the components that the topology stopped above their shares may get more faces.
     std::vector<char> stopped;
@@ -111,7 +115,7 @@ BackoffResult decimate_backing_off(const std::shared_ptr<const FineMesh>& fine, 
         finer.component_targets = std::move(targets);
         if (backoff.stage) backoff.stage("decimating again, to " + std::to_string(sum) + " faces");
         DecimateResult decimation = decimate(*fine, finer);
-        if (decimation.aborted) {
+        if (decimation.aborted) {  // the last level, complete, stands
             result.decimation.aborted = true;
             break;
         }

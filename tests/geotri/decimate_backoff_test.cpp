@@ -134,13 +134,36 @@ TEST(DecimateBackoff, only_the_component_that_the_topology_stopped_backs_off) {
     EXPECT_EQ(bob_kept.faces, 72);  // 18, 36, 72
     EXPECT_EQ(sphere_kept.faces, 4);
     EXPECT_EQ(result.levels.back().faces, 76u);
-    // The sphere's coarse vertices are those of its decimation alone.
-    const FineMesh sphere_alone = make_fine_mesh(MeshData{sphere.positions, sphere.triangles}, "sphere");
-    const DecimateResult alone = decimate(sphere_alone, faces_target(4));
-    std::vector<int> sphere_vertices;
-    for (int v : result.decimation.fine_vertex)
-        if (v >= offset) sphere_vertices.push_back(v - offset);
-    EXPECT_EQ(sphere_vertices, alone.fine_vertex);
+    // The sphere's coarse vertices are those of the first decimation, before any back-off.
+    auto sphere_vertices = [&](const DecimateResult& decimation) {
+        std::vector<int> vertices;
+        for (int v : decimation.fine_vertex)
+            if (v >= offset) vertices.push_back(v);
+        return vertices;
+    };
+    EXPECT_EQ(sphere_vertices(result.decimation), sphere_vertices(decimate(*fine, faces_target(4))));
+}
+
+// The tangles are counted per component: knot1 (0.60 violations per edge at its coarsest) backs off, anchor (0.12)
+// next to it does not, though the two together have less than one per three edges.
+TEST(DecimateBackoff, tangles_are_counted_per_component) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at " << test::configured_shared_data_dir();
+    const MeshData knot = read_mesh(test::shared_mesh("classic/knot1.off").path);
+    const MeshData anchor = read_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off");
+    MeshData both = knot;
+    const int offset = static_cast<int>(knot.positions.size());
+    for (const Eigen::Vector3d& p : anchor.positions) both.positions.push_back(p + Eigen::Vector3d(1000.0, 0.0, 0.0));
+    for (const auto& t : anchor.triangles) both.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    const auto fine = std::make_shared<const FineMesh>(make_fine_mesh(both, "knot and anchor"));
+    ASSERT_EQ(fine->num_components, 2);
+    const std::size_t knot_component = static_cast<std::size_t>(fine->component[0]);
+    const DecimateResult first = decimate(*fine, faces_target(4));
+    const BackoffResult result = decimate_backing_off(fine, faces_target(4));
+    ASSERT_GE(result.levels.size(), 2u);
+    EXPECT_LE(3 * result.levels.front().tangled, static_cast<int>(result.levels.front().edges));  // all together
+    EXPECT_EQ(result.decimation.components[knot_component].faces, 2 * first.components[knot_component].faces);
+    EXPECT_EQ(result.decimation.components[1 - knot_component].faces, first.components[1 - knot_component].faces);
 }
 
 TEST(DecimateBackoff, cheese_backs_off_from_the_coarsest_mesh_to_one_that_untangles) {

@@ -195,8 +195,12 @@ TEST_F(Trace, assignment_copies_everything_into_the_coarse_mesh_that_g_has) {
                                 geotri::make_coarse_mesh(coarse_torus(fine->mesh, 48, 24, 12, 8), "finer torus"));
     geotri::trace(other);
     const geotri::CoarseMesh* storage = &other.coarse();
+    OpenMesh::VPropHandleT<geotri::SurfacePoint> location;
+    ASSERT_TRUE(other.coarse().get_property_handle(location, "geotri:location"));
+    const auto* location_storage = &other.coarse().property(location);
     other = g;
     EXPECT_EQ(&other.coarse(), storage);
+    EXPECT_EQ(&other.coarse().property(location), location_storage);  // assigned in place, not cloned
     EXPECT_EQ(other.coarse().n_faces(), g.coarse().n_faces());
     EXPECT_TRUE(other.coarse().status(OpenMesh::FaceHandle(3)).tagged());
     EXPECT_FALSE(other.coarse().status(OpenMesh::FaceHandle(4)).tagged());

@@ -39,9 +39,9 @@ struct DecimateOptions {
     double ratio = 0.0;               ///< at most ratio · faces of T, 0 < ratio <= 1 (0: unset)
     bool coarsest = false;            ///< as coarse as each component's topology and the link condition allow
     /// Per component of T (FineMesh::component numbering): the faces that it aims at, in place of its share of the
-    /// target (each at least the component's min_faces and at most its faces); empty: shares of the target. The
-    /// target is then their sum, whichever target is set. Backing off (decimate_backoff.h) gives a component whose
-    /// geodesics tangle more faces and leaves the others' decimation as it was.
+    /// target (each at least the component's min_faces and at most its faces); empty: shares of the target. One of
+    /// the targets above must still be set, but the target is then their sum in faces, whichever it is. Backing off
+    /// (decimate_backoff.h) gives a component whose geodesics tangle more faces and leaves the others' as it was.
     std::vector<int> component_targets;
 
     DecimateStrategy strategy = DecimateStrategy::multiple_choice;

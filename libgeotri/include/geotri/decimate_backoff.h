@@ -49,7 +49,8 @@ struct BackoffResult {
 /// paths). Each component of T that the topology stopped above its share, and whose geodesics tangle more than
 /// `backoff` allows, is decimated again to twice its faces (DecimateOptions::component_targets; never to as many
 /// faces as it has), the others to their shares as before, at most max_rounds times. Where tracing a level fails
-/// (trace() throws), that level is kept as it is. The levels' traced G are not kept: geotri-trace traces the one
+/// (trace() throws), that level is kept as it is. Where the progress callback stops a decimation, the last
+/// complete level is kept, with `aborted` set. The levels' traced G are not kept: geotri-trace traces the one
 /// kept again. Deterministic, as decimate() and trace() are. Throws as decimate() does.
 BackoffResult decimate_backing_off(const std::shared_ptr<const FineMesh>& fine, const DecimateOptions& options,
                                    const BackoffOptions& backoff = {});

@@ -31,9 +31,9 @@ using CoarseMesh = OpenMesh::TriMesh_ArrayKernelT<CoarseTraits>;
 /// Copies are independent (the fine mesh is shared, and so are the polylines, which are never changed in place but
 /// replaced): an operation that may be refused can work on a copy, and copying costs no polyline. Assigning to a G,
 /// by copy or by move, copies into the coarse mesh that it has, which stays the same object (references to
-/// coarse() stay valid) and keeps its storage (assign()). Constructing one by move takes the other's coarse mesh
-/// without a copy (OpenMesh's meshes have no move operations: their "moves" copied everything); the G moved from may
-/// then only be assigned to or destroyed.
+/// coarse() stay valid), in its storage where both have only the properties that every G has (assign()).
+/// Constructing one by move takes the other's coarse mesh without a copy (OpenMesh's meshes have no move operations:
+/// their "moves" copied everything); the G moved from may then only be assigned to or destroyed.
 class GeodesicTriangulation {
 public:
     /// Takes the coarse mesh as it is; locations and polylines start empty (location: vertex -1; polyline: none).
@@ -49,7 +49,8 @@ public:
 
     /// Becomes a copy of `other` in the storage that this G has, where it is large enough: a trial G that becomes G
     /// again and again allocates nothing once it has grown, and shares what it shared before (the polylines of the
-    /// edges that did not change). Properties that a caller added to coarse() are resized, not copied.
+    /// edges that did not change). Where either has properties that a caller added to coarse(), OpenMesh's whole
+    /// copy instead: this G then has exactly other's properties, and handles to those it had may no longer hold.
     void assign(const GeodesicTriangulation& other);
     CoarseMesh& coarse() { return *coarse_; }
     const CoarseMesh& coarse() const { return *coarse_; }
