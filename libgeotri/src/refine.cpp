@@ -515,9 +515,9 @@ private:
     /// Without whole checks, true: the local checks of the operations are what keeps G valid.
     bool valid_whole(const GeodesicTriangulation& trial) const { return !whole_checks_ || validate(trial).valid; }
 
-    /// A copy of G to try an operation on, in the storage of `slot` where it has some: copying G for every split
-    /// and move tried, into new storage, cost more than the operations on a G of thousands of faces (cheese at 25
-    /// degrees: PropertyT::clone(), malloc() and free() were a third of refinement).
+    /// A copy of G to try an operation on, in the storage of `slot` where it has some: copying G into new storage
+    /// for every split and move tried was a third of refinement on a G of thousands of faces (cheese at 25
+    /// degrees: PropertyT::clone(), malloc() and free()).
     GeodesicTriangulation& trial_copy(std::optional<GeodesicTriangulation>& slot) const {
         if (slot) *slot = g_;
         else slot.emplace(g_);
