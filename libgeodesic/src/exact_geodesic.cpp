@@ -458,7 +458,11 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
             stop.window_estimate = std::min(stop.window_estimate, window_value_at(w, layout(h, stop.point)));
         }
     }
-    const double key = w.lower_bound() + estimate_left(w);
+    // The estimate adds to the bound: where the bound alone is no lower than the halfedge's queued key, so is the
+    // key, and the estimate (a loop over the goals) is not needed.
+    const double bound = w.lower_bound();
+    if (!(bound < queued_halfedge_key_[h])) return;
+    const double key = bound + estimate_left(w);
     if (key < queued_halfedge_key_[h]) {
         queued_halfedge_key_[h] = key;
         push_queue(key, h);
