@@ -26,6 +26,14 @@ std::shared_ptr<const FineMesh> bundled_bob() {  // genus 1, 500 faces: a target
     return std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply"));
 }
 
+// `second` moved by `shift` and added to `first` as a component of its own; its vertices come after first's.
+MeshData side_by_side(MeshData first, const MeshData& second, const Eigen::Vector3d& shift) {
+    const int offset = static_cast<int>(first.positions.size());
+    for (const Eigen::Vector3d& p : second.positions) first.positions.push_back(p + shift);
+    for (const auto& t : second.triangles) first.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    return first;
+}
+
 DecimateOptions faces_target(std::size_t faces) {
     DecimateOptions options;
     options.target_faces = faces;
@@ -117,11 +125,9 @@ TEST(DecimateBackoff, too_tangled_levels_double_within_the_rounds_and_the_fine_m
 TEST(DecimateBackoff, only_the_component_that_the_topology_stopped_backs_off) {
     const MeshData bob = read_mesh(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply");
     const test::TriangleMesh sphere = test::icosphere(2);
-    MeshData both = bob;
     const int offset = static_cast<int>(bob.positions.size());
-    for (const Eigen::Vector3d& p : sphere.positions) both.positions.push_back(p + Eigen::Vector3d(5.0, 0.0, 0.0));
-    for (const auto& t : sphere.triangles) both.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-    const auto fine = std::make_shared<const FineMesh>(make_fine_mesh(both, "bob and a sphere"));
+    const auto fine = std::make_shared<const FineMesh>(make_fine_mesh(
+        side_by_side(bob, {sphere.positions, sphere.triangles}, Eigen::Vector3d(5.0, 0.0, 0.0)), "bob and a sphere"));
     ASSERT_EQ(fine->num_components, 2);
     const int bob_component = fine->component[0], sphere_component = 1 - bob_component;
     BackoffOptions always;
@@ -151,11 +157,8 @@ TEST(DecimateBackoff, tangles_are_counted_per_component) {
         GTEST_SKIP() << "shared meshes not found at " << test::configured_shared_data_dir();
     const MeshData knot = read_mesh(test::shared_mesh("classic/knot1.off").path);
     const MeshData anchor = read_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off");
-    MeshData both = knot;
-    const int offset = static_cast<int>(knot.positions.size());
-    for (const Eigen::Vector3d& p : anchor.positions) both.positions.push_back(p + Eigen::Vector3d(1000.0, 0.0, 0.0));
-    for (const auto& t : anchor.triangles) both.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-    const auto fine = std::make_shared<const FineMesh>(make_fine_mesh(both, "knot and anchor"));
+    const auto fine = std::make_shared<const FineMesh>(
+        make_fine_mesh(side_by_side(knot, anchor, Eigen::Vector3d(1000.0, 0.0, 0.0)), "knot and anchor"));
     ASSERT_EQ(fine->num_components, 2);
     const std::size_t knot_component = static_cast<std::size_t>(fine->component[0]);
     const DecimateResult first = decimate(*fine, faces_target(4));
