@@ -478,6 +478,7 @@ public:
         (void)options;
 #endif
         propagations_.resize(static_cast<std::size_t>(threads_));
+        trial_storage_.resize(static_cast<std::size_t>(threads_));
     }
 
     /// Tries `moves` and keeps the first that is possible and lowers the count: G and report become its, and
@@ -523,20 +524,20 @@ public:
             }
             Trial& t = trials[k];
             try {
-                t.g.emplace(g_);
+                GeodesicTriangulation& trial = trial_copy();
                 geodesic::ExactGeodesic& p = propagation();
                 const std::size_t work_before = p.windows_created_total();
                 try {
-                    t.operations = moves[k].run(*t.g, p, count_trial);
+                    t.operations = moves[k].run(trial, p, count_trial);
                 } catch (const InvalidInput&) {
                     t.operations = 0;
                 }
                 t.work = p.windows_created_total() - work_before;
-                t.better = t.operations > 0 && lowers_violations(*t.g, report_, verdicts_, *count_, t.cheap, t.report);
+                t.better = t.operations > 0 && lowers_violations(trial, report_, verdicts_, *count_, t.cheap, t.report);
+                if (t.better) t.g.emplace(std::move(trial));  // takes the coarse mesh along
             } catch (...) {
                 t.error = std::current_exception();
             }
-            if (!t.better) t.g.reset();
             std::lock_guard<std::mutex> lock(progress);
             finished[k] = 1;
             if (t.better || t.error) last = std::min(last, k);
@@ -599,6 +600,20 @@ private:
         check_count(count_->count(), report_, "G");
     }
 
+    /// A copy of G for the calling thread's next trial, in the storage of its last one where that was not kept
+    /// (a kept trial takes its coarse mesh along, and the next copy is a new one): a copy of G into new storage for
+    /// every trial was an eighth of untangling cheese (PropertyT::clone() and clear()).
+    GeodesicTriangulation& trial_copy() {
+        std::size_t k = 0;
+#ifdef _OPENMP
+        k = static_cast<std::size_t>(omp_get_thread_num());
+#endif
+        std::optional<GeodesicTriangulation>& storage = trial_storage_[k];
+        if (storage) *storage = g_;
+        else storage.emplace(g_);
+        return *storage;
+    }
+
     /// The calling thread's propagation object, made on first use.
     geodesic::ExactGeodesic& propagation() {
         std::size_t k = 0;
@@ -616,6 +631,7 @@ private:
     int threads_ = 1;
     geodesic::ExactGeodesic* given_propagation_;  ///< FlipToDelaunayOptions::propagation, the calling thread's
     std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread without a given one
+    std::vector<std::optional<GeodesicTriangulation>> trial_storage_;      ///< one per thread (trial_copy())
     std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
     detail::PolylineVerdicts verdicts_;    ///< condition 1 on G's polylines, for judging the trials
     std::optional<detail::ViolationCount> count_;  ///< G's violations of conditions 1-3, to count the trials'
