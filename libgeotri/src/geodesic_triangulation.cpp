@@ -15,32 +15,35 @@ namespace geotri {
 
 namespace {
 
-// The names of a coarse mesh's properties, every kind, in their places ("" for an empty place).
+// Calls visit(name) with the name of each of the mesh's properties in its place, every kind ("" for an empty
+// place, "|" after each kind), until it returns false; returns whether it never did.
+template <class Visit>
+bool visit_property_names(const CoarseMesh& mesh, Visit visit) {
+    auto kind = [&](auto begin, auto end) {
+        for (auto p = begin; p != end; ++p)
+            if (!visit(*p ? (*p)->name() : std::string())) return false;
+        return visit(std::string("|"));
+    };
+    return kind(mesh.vprops_begin(), mesh.vprops_end()) && kind(mesh.hprops_begin(), mesh.hprops_end()) &&
+           kind(mesh.eprops_begin(), mesh.eprops_end()) && kind(mesh.fprops_begin(), mesh.fprops_end()) &&
+           kind(mesh.mprops_begin(), mesh.mprops_end());
+}
+
 std::vector<std::string> property_names(const CoarseMesh& mesh) {
     std::vector<std::string> names;
-    auto add = [&](auto begin, auto end) {
-        for (auto p = begin; p != end; ++p) names.push_back(*p ? (*p)->name() : std::string());
-        names.push_back("|");  // between kinds
-    };
-    add(mesh.vprops_begin(), mesh.vprops_end());
-    add(mesh.hprops_begin(), mesh.hprops_end());
-    add(mesh.eprops_begin(), mesh.eprops_end());
-    add(mesh.fprops_begin(), mesh.fprops_end());
-    add(mesh.mprops_begin(), mesh.mprops_end());
+    visit_property_names(mesh, [&](const std::string& name) {
+        names.push_back(name);
+        return true;
+    });
     return names;
 }
 
 // Whether the mesh's properties are named `names` (property_names()), without building a list.
 bool has_property_names(const CoarseMesh& mesh, const std::vector<std::string>& names) {
     std::size_t i = 0;
-    auto same = [&](auto begin, auto end) {
-        for (auto p = begin; p != end; ++p, ++i)
-            if (i >= names.size() || names[i] != (*p ? (*p)->name() : std::string())) return false;
-        return i < names.size() && names[i++] == "|";
-    };
-    return same(mesh.vprops_begin(), mesh.vprops_end()) && same(mesh.hprops_begin(), mesh.hprops_end()) &&
-           same(mesh.eprops_begin(), mesh.eprops_end()) && same(mesh.fprops_begin(), mesh.fprops_end()) &&
-           same(mesh.mprops_begin(), mesh.mprops_end()) && i == names.size();
+    const bool all_match =
+        visit_property_names(mesh, [&](const std::string& name) { return i < names.size() && names[i++] == name; });
+    return all_match && i == names.size();
 }
 
 }  // namespace
@@ -71,9 +74,7 @@ GeodesicTriangulation& GeodesicTriangulation::operator=(GeodesicTriangulation&& 
     }
     fine_ = std::move(other.fine_);
     coarse_ = std::move(other.coarse_);
-    location_ = other.location_;
-    polyline_ = other.polyline_;
-    length_ = other.length_;
+    take_handles(other);
     return *this;
 }
 
@@ -92,9 +93,7 @@ void GeodesicTriangulation::assign(const GeodesicTriangulation& other) {
         property_names(GeodesicTriangulation(nullptr, CoarseMesh()).coarse());
     if (!has_property_names(*coarse_, every_gs) || !has_property_names(*other.coarse_, every_gs)) {
         *coarse_ = *other.coarse_;
-        location_ = other.location_;
-        polyline_ = other.polyline_;
-        length_ = other.length_;
+        take_handles(other);
         return;
     }
     // The connectivity by vector assignment (which keeps a large enough capacity), resizing every property; then
@@ -111,6 +110,12 @@ void GeodesicTriangulation::assign(const GeodesicTriangulation& other) {
     mesh.property(location_) = from.property(other.location_);
     mesh.property(polyline_) = from.property(other.polyline_);
     mesh.property(length_) = from.property(other.length_);
+}
+
+void GeodesicTriangulation::take_handles(const GeodesicTriangulation& other) {
+    location_ = other.location_;
+    polyline_ = other.polyline_;
+    length_ = other.length_;
 }
 
 void GeodesicTriangulation::set_location(OpenMesh::VertexHandle v, const SurfacePoint& p) {

@@ -72,6 +72,8 @@ public:
     double length(OpenMesh::EdgeHandle e) const { return coarse_->property(length_, e); }
 
 private:
+    void take_handles(const GeodesicTriangulation& other);  ///< the property handles of other's coarse mesh
+
     std::shared_ptr<const FineMesh> fine_;
     std::unique_ptr<CoarseMesh> coarse_;  // on the heap, so that moving G moves a pointer
     OpenMesh::VPropHandleT<SurfacePoint> location_;
