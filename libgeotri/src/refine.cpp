@@ -14,14 +14,21 @@
 #include "patch_location.h"
 #include "plane_segments.h"
 #include "polygon_triangulation.h"
+#include "speculative_attempts.h"
 
 #include <Eigen/Dense>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <set>
 
@@ -193,16 +200,23 @@ bool better_result(const RefineResult& a, const GeodesicTriangulation& ga, const
             smallest_corner_of(ga, exempt_below) > smallest_corner_of(gb, exempt_below));
 }
 
+/// Storage for trial copies of G, kept between trials.
+struct TrialSlot {
+    std::optional<GeodesicTriangulation> g;
+    long copy_of = -1;  ///< the Refiner::g_version_ of the G that `g` still equals, or -1
+};
+
 class Refiner {
 public:
     /// `curved_fraction`: a vertex of T whose cone angle differs from 2π by more than this fraction of the minimum
     /// angle counts as curved.
     /// `whole_checks`: every step is also checked with validate() on all of G, overlay included, and refused where
     /// that finds G invalid (the safety net of refine()).
+    /// `stop_if_cancelled`, when given, is called after every step, and may throw to end refinement there.
     Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result, double curved_fraction,
-            bool whole_checks)
+            bool whole_checks, std::function<void()> stop_if_cancelled = {})
         : g_(g), options_(options), result_(result), propagation_(g.fine().mesh), pool_(g.fine().mesh),
-          whole_checks_(whole_checks) {
+          stop_if_cancelled_(std::move(stop_if_cancelled)), whole_checks_(whole_checks) {
         const geodesic::Mesh& mesh = g.fine().mesh;
         double sum = 0.0;
         for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
@@ -336,7 +350,9 @@ private:
         return true;
     }
 
+    /// Every loop of refinement comes here once per step.
     void progress(const char* stage) {
+        if (stop_if_cancelled_) stop_if_cancelled_();
         if (options_.progress && new_vertices_ % 50 == 0)
             options_.progress(std::string(stage) + ": " + std::to_string(g_.coarse().n_faces()) + " faces");
     }
@@ -517,18 +533,25 @@ private:
 
     /// A copy of G to try an operation on, in the storage of `slot` where it has some: copying G into new storage
     /// for every split and move tried was a third of refinement on a G of thousands of faces (cheese at 25
-    /// degrees: PropertyT::clone(), malloc() and free()).
-    GeodesicTriangulation& trial_copy(std::optional<GeodesicTriangulation>& slot) const {
-        if (slot) *slot = g_;
-        else slot.emplace(g_);
-        return *slot;
+    /// degrees: PropertyT::clone(), malloc() and free()). Not copied at all where the slot still holds this G
+    /// (untouched(), replace_g()). The slot counts as changed from here on.
+    GeodesicTriangulation& trial_copy(TrialSlot& slot) const {
+        if (!slot.g) slot.g.emplace(g_);
+        else if (slot.copy_of != g_version_) *slot.g = g_;
+        slot.copy_of = -1;
+        return *slot.g;
     }
+    /// The operation tried on the slot's copy refused before it changed anything: the copy is still G.
+    void untouched(TrialSlot& slot) const { slot.copy_of = g_version_; }
 
     /// G becomes `next`, a changed copy whose faces that differ from G's are `changed` (indices), or, where `next`
     /// was renumbered (a removal collects its garbage), any of them. Copied into G's storage (the coarse mesh stays
-    /// the same object), and `next` keeps its own for another trial.
-    void replace_g(const GeodesicTriangulation& next, const std::vector<int>* changed) {
+    /// the same object), and `next` keeps its own for another trial: `from`, its slot where it has one, then holds
+    /// this G.
+    void replace_g(const GeodesicTriangulation& next, const std::vector<int>* changed, TrialSlot* from = nullptr) {
         g_ = next;
+        ++g_version_;
+        if (from) from->copy_of = g_version_;
         if (!changed) renumbered_ = true;
         else if (!renumbered_) changed_faces_.insert(changed_faces_.end(), changed->begin(), changed->end());
     }
@@ -546,6 +569,7 @@ private:
         GeodesicTriangulation& trial = trial_copy(split_trial_);
         const SplitResult done = split(trial);
         if (!done.done) {
+            untouched(split_trial_);  // split_edge() and split_face() refuse before they change G
             ++result_.refused_splits;
             return Tried::refused_split;
         }
@@ -565,7 +589,7 @@ private:
             ++result_.refused_splits;
             return Tried::refused_shape;
         }
-        replace_g(trial, &changed);
+        replace_g(trial, &changed, &split_trial_);
         ++counter;
         ++new_vertices_;
         result_.flips += flips.improve_flips;
@@ -786,7 +810,7 @@ private:
         VertexHandle vertex;
         std::optional<SurfacePoint> target;  ///< where to move it; none: the centroid of its star
         std::vector<double> key;  ///< star_key() before the move, with the target
-        std::optional<GeodesicTriangulation>* slot = nullptr;  ///< the storage of its trial copy of G
+        TrialSlot* slot = nullptr;               ///< the storage of its trial copy of G
         GeodesicTriangulation* moved = nullptr;  ///< the trial, set where the move is one to keep
         std::vector<int> changed;  ///< the faces that the move and its flips changed
         double score = 0.0;        ///< the higher the better: their smallest corner after, or minus the widest
@@ -848,7 +872,7 @@ private:
         const SurfacePoint& to = best->moved->location(best->vertex);
         if (to.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(to.vertex);
         if (best->target) ++result_.moves_onto_saddles;
-        replace_g(*best->moved, &best->changed);
+        replace_g(*best->moved, &best->changed, best->slot);
         ++result_.moved_vertices;
         result_.flips += best->flips;
         return true;
@@ -870,7 +894,10 @@ private:
         const std::optional<SurfacePoint> target = c.target ? c.target : star_centroid(c.vertex);
         if (!target) return;
         GeodesicTriangulation& trial = trial_copy(*c.slot);
-        if (!relocate_vertex_in_star(trial, c.vertex, *target, &propagation).done) return;
+        if (!relocate_vertex_in_star(trial, c.vertex, *target, &propagation).done) {
+            untouched(*c.slot);  // relocate_vertex_in_star() refuses before it changes G
+            return;
+        }
         const CoarseMesh& coarse = trial.coarse();
         FlipToDelaunayResult flips;
         std::vector<EdgeHandle> flipped;
@@ -1163,6 +1190,7 @@ private:
     PropagationPool pool_;  ///< for the other threads of the flips' and reconnections' parallel loops
     PathCache paths_;       ///< the flips' geodesics, for flips evaluated again
     FlipToDelaunayOptions flip_options_;
+    std::function<void()> stop_if_cancelled_;
     std::set<int> coarse_at_fine_vertex_;  ///< the vertices of T that coarse vertices sit on
     std::vector<SurfacePoint> given_;       ///< the locations of the vertices that removals may take out
     std::vector<SurfacePoint> input_;       ///< the locations of the vertices of the G given
@@ -1175,8 +1203,9 @@ private:
     std::set<std::vector<double>> failed_moves_;  ///< star_key() of the moves tried without success
     mutable std::vector<unsigned> face_stamp_;  ///< per face of T: the last curved_vertex_near() that saw it
     mutable unsigned search_number_ = 0;
-    std::optional<GeodesicTriangulation> split_trial_;  ///< storage for the splits' trial copies of G
-    std::vector<std::optional<GeodesicTriangulation>> move_trials_;  ///< and for those of the moves tried together
+    TrialSlot split_trial_;                ///< storage for the splits' trial copies of G
+    std::vector<TrialSlot> move_trials_;  ///< and for those of the moves tried together
+    long g_version_ = 0;                  ///< how many times replace_g() changed G
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;
@@ -1184,6 +1213,75 @@ private:
     /// The faces of G that changed since raise_min_angle() last looked (indices), or, when renumbered_, any.
     std::vector<int> changed_faces_;
     bool renumbered_ = true;  // nothing is recorded until raise_min_angle() looks
+};
+
+/// How many threads `threads` (RefineOptions::threads) stands for.
+int team_size(int threads) {
+    if (threads > 0) return threads;
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+/// One refinement of the G given: its result, and what it did.
+struct Attempt {
+    std::optional<GeodesicTriangulation> g;
+    RefineResult result;
+};
+
+/// The refinements of the G given that refine() may need, in this order: as the options say; the same with nearly
+/// every vertex of T that is not flat counted as curved (k_second_curved_fraction); and, where `without_moves`, both
+/// again without vertex moves. refine() knows which it needs only from the results of those before, so on `threads`
+/// > 1 they all start at once (SpeculativeAttempts), and each one's progress is reported while refine() waits for it.
+class Attempts {
+public:
+    Attempts(const GeodesicTriangulation& given, const RefineResult& given_result, const RefineOptions& options,
+             bool whole_checks, bool without_moves, int threads)
+        : given_(given), given_result_(given_result), whole_checks_(whole_checks), progress_(options.progress),
+          options_(without_moves ? 4 : 2, options), slots_(options_.size()),
+          runner_(options_.size(), threads, [this](std::size_t k) { run(k); }) {
+        for (std::size_t k = 2; k < options_.size(); ++k) options_[k].move_vertices = false;
+    }
+
+    /// Attempt k, once finished; rethrows what it threw.
+    const Attempt& get(std::size_t k) {
+        runner_.wait(k);
+        return slots_[k];
+    }
+    /// Attempt k is not needed (the other attempts after `first` in refine_given()).
+    void cancel(std::size_t k) {
+        if (k < slots_.size()) runner_.cancel(k);
+    }
+
+private:
+    void run(std::size_t k) {
+        RefineOptions options = options_[k];
+        if (progress_)
+            options.progress = [this, k](const std::string& line) {
+                if (!runner_.waited_for(k)) return;
+                std::lock_guard<std::mutex> lock(progress_mutex_);
+                progress_(line);
+            };
+        Attempt& slot = slots_[k];
+        slot.g.emplace(given_);
+        slot.result = given_result_;
+        Refiner refiner(*slot.g, options, slot.result, k % 2 == 0 ? k_curved_fraction : k_second_curved_fraction,
+                        whole_checks_, [this, k] { runner_.stop_if_cancelled(k); });
+        refiner.bisect();
+        refiner.raise_min_angle();
+        refiner.count_corners_left();
+    }
+
+    const GeodesicTriangulation& given_;
+    const RefineResult& given_result_;
+    const bool whole_checks_;
+    const std::function<void(const std::string&)>& progress_;  // the caller's own, which refine() reports to too
+    std::vector<RefineOptions> options_;  // attempt k's, but for their progress
+    std::vector<Attempt> slots_;
+    std::mutex progress_mutex_;
+    detail::SpeculativeAttempts runner_;  // last: its threads start as it is made, and use all of the above
 };
 
 }  // namespace
@@ -1205,88 +1303,89 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
                            " violations); make it valid first (geotri-flip)");
     result.angles_before = corner_angle_stats(g);
 
-    // The G given, for a second attempt at the minimum angle and for the safety net (a copy shares the polylines).
+    // The G given, for the attempts after the first and for the safety net (a copy shares the polylines).
     const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
     const RefineResult given_result = result;
     const GeodesicTriangulation given = g;
-    // Refines `target` (the G given), with a second attempt where that helps; returns validate() of the result.
-    auto refine_given = [&](GeodesicTriangulation& target, RefineResult& counts, bool whole_checks,
-                            const RefineOptions& with) {
-        auto run = [&with, whole_checks](GeodesicTriangulation& on, RefineResult& c, double curved_fraction) {
-            Refiner refiner(on, with, c, curved_fraction, whole_checks);
-            refiner.bisect();
-            refiner.raise_min_angle();
-            refiner.count_corners_left();
-        };
-        run(target, counts, k_curved_fraction);
-        // Given up on some triangles, not cascading into the cap: once more with nearly every vertex of T curved,
-        // and the better of the two kept (fewer corners left, then the larger smallest corner that is not exempt).
+    // Takes attempt `first` into `target` and `counts`, or, where it gave up on some triangles without reaching the
+    // cap, the better of it and the attempt after it, with nearly every vertex of T curved (fewer corners left, then
+    // the larger smallest corner that is not exempt); returns validate() of the one taken.
+    auto refine_given = [&](Attempts& attempts, std::size_t first, GeodesicTriangulation& target,
+                            RefineResult& counts) {
+        const Attempt& one = attempts.get(first);
+        target = *one.g;
+        counts = one.result;
         if (options.min_angle_deg > 0.0 && counts.small_corners_left > 0 && !counts.vertex_cap_reached) {
             if (options.progress)
                 options.progress("gave up on " + std::to_string(counts.small_corners_left) +
                                  (counts.small_corners_left == 1 ? " corner" : " corners") +
                                  ": starting again with nearly every vertex of T counted as curved");
-            GeodesicTriangulation second = given;
-            RefineResult second_result = given_result;
             counts.second_attempt = true;
-            bool finished = true;
+            const Attempt* second = nullptr;
             try {
-                run(second, second_result, k_second_curved_fraction);
+                second = &attempts.get(first + 1);
             } catch (const NumericalError& error) {
                 // The second attempt only tries to do better: where it meets numerical trouble, the first stands.
                 counts.second_attempt_error = error.what();
-                finished = false;
             }
-            second_result.second_attempt = true;
             // Only a valid second result can be better: the local checks may have let an invalid one through.
-            if (finished && better_result(second_result, second, counts, target, exempt_below)) {
-                ValidationReport second_report = validate(second);
+            if (second && better_result(second->result, *second->g, counts, target, exempt_below)) {
+                ValidationReport second_report = validate(*second->g);
                 if (second_report.valid) {
-                    target = std::move(second);
-                    counts = second_result;
-                    counts.second_attempt_kept = true;
+                    target = *second->g;
+                    counts = second->result;
+                    counts.second_attempt = counts.second_attempt_kept = true;
                     return second_report;
                 }
             }
+        } else {
+            attempts.cancel(first + 1);
         }
         return validate(target);
     };
-    ValidationReport after = refine_given(g, result, false, options);
-    // Given up on a few triangles with vertex moves, not cascading into the cap: once more without them, and the
-    // better kept. The ways out that refinement has where it is stuck (a longer cap when nearly done, removing the
-    // vertices it added) were made for circumcentres alone, and moves can stand in their way: at 30 degrees,
-    // footbones and boxpart reach the angle only without moves. Where more are left, circumcentres alone left more
-    // still on every mesh measured (man, gears and skull_thing74168 at 25 degrees, femur_cgal at 30).
-    if (options.move_vertices && options.min_angle_deg > 0.0 && after.valid && result.small_corners_left > 0 &&
-        result.small_corners_left <= k_few_corners_left && !result.vertex_cap_reached) {
-        if (options.progress) options.progress("corners left with vertex moves: starting again without them");
-        RefineOptions without = options;
-        without.move_vertices = false;
-        GeodesicTriangulation other = given;
-        RefineResult other_result = given_result;
-        std::optional<ValidationReport> other_report;
-        try {
-            other_report = refine_given(other, other_result, false, without);
-        } catch (const NumericalError& error) {
-            // It only tries to do better: where it meets numerical trouble, the result with moves stands.
-            result.without_moves_error = error.what();
+    // On a small T each attempt runs on one thread (k_min_faces_for_threads): those that may be needed then start
+    // together, on threads of their own.
+    const int attempt_threads = options.min_angle_deg > 0.0 && g.fine().mesh.num_faces() < k_min_faces_for_threads
+                                    ? team_size(options.threads)
+                                    : 1;
+    ValidationReport after;
+    {
+        Attempts attempts(given, given_result, options, false, options.move_vertices, attempt_threads);
+        after = refine_given(attempts, 0, g, result);
+        // Given up on a few triangles with vertex moves, not cascading into the cap: once more without them, and
+        // the better kept. The ways out that refinement has where it is stuck (a longer cap when nearly done,
+        // removing the vertices it added) were made for circumcentres alone, and moves can stand in their way: at
+        // 30 degrees, footbones and boxpart reach the angle only without moves. Where more are left, circumcentres
+        // alone left more still on every mesh measured (man, gears and skull_thing74168 at 25 degrees, femur_cgal
+        // at 30).
+        if (options.move_vertices && options.min_angle_deg > 0.0 && after.valid && result.small_corners_left > 0 &&
+            result.small_corners_left <= k_few_corners_left && !result.vertex_cap_reached) {
+            if (options.progress) options.progress("corners left with vertex moves: starting again without them");
+            GeodesicTriangulation other = given;
+            RefineResult other_result = given_result;
+            std::optional<ValidationReport> other_report;
+            try {
+                other_report = refine_given(attempts, 2, other, other_result);
+            } catch (const NumericalError& error) {
+                // It only tries to do better: where it meets numerical trouble, the result with moves stands.
+                result.without_moves_error = error.what();
+            }
+            result.without_moves_tried = true;
+            if (other_report && other_report->valid && better_result(other_result, other, result, g, exempt_below)) {
+                g = std::move(other);
+                result = other_result;
+                after = *other_report;
+                result.without_moves_tried = result.without_moves_kept = true;
+            }
         }
-        result.without_moves_tried = true;
-        if (other_report && other_report->valid && better_result(other_result, other, result, g, exempt_below)) {
-            g = std::move(other);
-            result = other_result;
-            after = *other_report;
-            result.without_moves_tried = result.without_moves_kept = true;
-        }
-    }
+    }  // the attempts not needed stop here
     // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
     // with bisections, a face split whose geodesics passed them left patches that were not disks. Where the
     // result is invalid, refinement starts again from the G given, every step then also checked on all of G.
     if (!after.valid) {
         if (options.progress) options.progress("the result was not valid: starting again, checking all of G each step");
-        g = given;
-        result = given_result;
-        after = refine_given(g, result, true, options);
+        Attempts attempts(given, given_result, options, true, false, 1);
+        after = refine_given(attempts, 0, g, result);
         result.whole_checks = true;
     }
     result.valid_after = after.valid;

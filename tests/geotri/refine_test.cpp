@@ -134,8 +134,17 @@ void check_min_angle(GeodesicTriangulation g, double angle, const std::string& n
         EXPECT_TRUE(every_corner_at_least(g, angle)) << "smallest corner " << min_corner_deg(g) << "°";
     }
     expect_valid_with_area(g);
-    refine(twin, options);
+    // Again on one thread: on a small T, the attempts that refine() may need ran at once, on threads of their own;
+    // one by one, only those needed run, and they give the same G and the same choices.
+    RefineOptions one_thread = options;
+    one_thread.threads = 1;
+    const RefineResult again = refine(twin, one_thread);
     EXPECT_EQ(polylines_of(twin), polylines_of(g));
+    EXPECT_EQ(again.second_attempt, r.second_attempt);
+    EXPECT_EQ(again.second_attempt_kept, r.second_attempt_kept);
+    EXPECT_EQ(again.without_moves_tried, r.without_moves_tried);
+    EXPECT_EQ(again.without_moves_kept, r.without_moves_kept);
+    EXPECT_EQ(again.flips, r.flips);
     if (out) *out = r;
     if (refined) *refined = std::move(g);
 }
@@ -415,8 +424,11 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     EXPECT_EQ(polylines_of(again), polylines_of(at_30));
 
     // A second attempt that meets numerical trouble (here thrown from the progress callback once it has begun)
-    // leaves the first result, as refining without it gives, and says why.
+    // leaves the first result, as refining without it gives, and says why. On one thread, so that the second
+    // attempt begins after the first has ended (on more, it runs ahead, and its progress is reported only once
+    // refine() waits for it: it may have ended by then).
     GeodesicTriangulation troubled = flipped;
+    options.threads = 1;
     options.progress = [started = false](const std::string& where) mutable {
         if (started) throw NumericalError("trouble in the second attempt");
         started = where.find("starting again") != std::string::npos;

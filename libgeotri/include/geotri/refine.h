@@ -55,8 +55,10 @@ struct RefineOptions {
     /// stops there and says so. Past the default cap, the corners above 180 degrees left are still cut (see
     /// min_angle_deg); a cap given here is never passed.
     int max_new_vertices = 0;
-    /// Threads for the propagations of the flips after each split and of the reconnections that take out a vertex;
-    /// 0: as many as OpenMP likes. The result is the same for any count.
+    /// Threads for the propagations of the flips after each split and of the reconnections that take out a vertex,
+    /// or, on a T of under 20000 faces, where those are too short to share, for the attempts that refinement to a
+    /// minimum angle may need (RefineResult::second_attempt, without_moves_tried): they then start together, and
+    /// those found unneeded stop. 0: as many as OpenMP likes. The result is the same for any count.
     int threads = 0;
     /// Called now and then with a line saying where refinement is.
     std::function<void(const std::string&)> progress;
@@ -101,7 +103,8 @@ struct RefineResult {
 };
 
 /// Refines G as `options` say. Throws InvalidInput when G is not valid (refinement keeps a valid G valid; make it
-/// valid first with flip_to_delaunay()) or when an option is out of range. Sequential and deterministic.
+/// valid first with flip_to_delaunay()) or when an option is out of range. Deterministic: the same result for any
+/// RefineOptions::threads.
 RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options);
 
 }  // namespace geotri
