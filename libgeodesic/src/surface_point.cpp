@@ -35,16 +35,6 @@ SurfacePoint SurfacePoint::in_face(int f, const std::array<double, 3>& bary) {
     return p;
 }
 
-bool SurfacePoint::operator==(const SurfacePoint& other) const {
-    if (kind != other.kind) return false;
-    switch (kind) {
-        case PointKind::vertex: return vertex == other.vertex;
-        case PointKind::edge: return edge_v0 == other.edge_v0 && edge_v1 == other.edge_v1 && t == other.t;
-        case PointKind::face: return face == other.face && bary == other.bary;
-    }
-    return false;
-}
-
 namespace {
 
 std::string exact(double x) {

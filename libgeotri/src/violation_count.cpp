@@ -338,6 +338,35 @@ struct Difference {
     std::array<int, 3> violations{};
 };
 
+/// Per coarse vertex of g: whether its condition 2 may differ from the state's, where `d` holds the vertices and
+/// edges that differ. It can only at a vertex that differs, at an end of an edge that differs, and where the
+/// rotation of halfedges differs: rotation() walks prev() and opposite() from the vertex's halfedge, so a vertex
+/// whose halfedge is the same, and whose every halfedge in the state's rotation has the same prev(), has the same
+/// rotation. Walking every vertex's rotation was most of untangling's counting; this is two passes over arrays.
+std::vector<unsigned char> corners_that_may_differ(const ViolationCount::State& base, const GeodesicTriangulation& g,
+                                                   const Difference& d) {
+    const CoarseMesh& coarse = g.coarse();
+    const CoarseMesh& before = base.g->coarse();
+    const int nv = static_cast<int>(coarse.n_vertices());
+    std::vector<unsigned char> may_differ(static_cast<std::size_t>(nv), 0);
+    for (int v = 0; v < nv; ++v)
+        if (d.vertex_slot[static_cast<std::size_t>(v)] >= 0) may_differ[static_cast<std::size_t>(v)] = 1;
+    for (const EdgeState& s : d.edges)
+        if (s.present) may_differ[static_cast<std::size_t>(s.from)] = may_differ[static_cast<std::size_t>(s.to)] = 1;
+    const int common_nv = std::min(nv, static_cast<int>(before.n_vertices()));
+    for (int v = 0; v < common_nv; ++v)
+        if (coarse.halfedge_handle(VertexHandle(v)) != before.halfedge_handle(VertexHandle(v)))
+            may_differ[static_cast<std::size_t>(v)] = 1;
+    const int common_nh = static_cast<int>(std::min(coarse.n_halfedges(), before.n_halfedges()));
+    for (int h = 0; h < common_nh; ++h) {
+        const HalfedgeHandle handle(h);
+        if (coarse.prev_halfedge_handle(handle) == before.prev_halfedge_handle(handle)) continue;
+        const int v = before.from_vertex_handle(handle).idx();
+        if (v >= 0 && v < nv) may_differ[static_cast<std::size_t>(v)] = 1;
+    }
+    return may_differ;
+}
+
 Difference difference(const ViolationCount::State& base, const GeodesicTriangulation& g, const PolylineVerdicts& known,
                       bool full) {
     const Mesh& mesh = g.fine().mesh;
@@ -354,18 +383,22 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
 
     // Locations, as Validator::prepare() makes them canonical.
     d.vertex_slot.assign(static_cast<std::size_t>(nv), -1);
+    // A trial differs from the state in a few elements: those that do not are passed over before anything is made.
     for (int v = 0; v < nv; ++v) {
         const VertexHandle handle(v);
-        VertexState s;
-        s.index = v;
-        s.present = !coarse.status(handle).deleted();
-        if (s.present) s.raw = g.location(handle);
+        const bool present = !coarse.status(handle).deleted();
         if (v < base_nv) {
             const VertexState& old = base.vertices[static_cast<std::size_t>(v)];
-            if (old.present == s.present && (!s.present || old.raw == s.raw)) continue;
+            if (old.present == present && (!present || old.raw == g.location(handle))) continue;
             gone(vertex_feature(v));
         }
-        if (s.present) s.canonical = canonical_location(mesh, s.raw, v);
+        VertexState s;
+        s.index = v;
+        s.present = present;
+        if (present) {
+            s.raw = g.location(handle);
+            s.canonical = canonical_location(mesh, s.raw, v);
+        }
         d.vertex_slot[static_cast<std::size_t>(v)] = static_cast<int>(d.vertices.size());
         d.vertices.push_back(s);
     }
@@ -379,26 +412,29 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
     d.edge_slot.assign(static_cast<std::size_t>(ne), -1);
     for (int e = 0; e < ne; ++e) {
         const EdgeHandle handle(e);
+        const bool present = !coarse.status(handle).deleted();
+        const Polyline* raw = present ? &g.polyline(handle) : nullptr;
+        if (e < base_ne) {
+            const EdgeState& old = base.edges[static_cast<std::size_t>(e)];
+            if (old.present == present && (!present || (old.raw == raw && old.length == g.length(handle)))) {
+                if (!present) continue;
+                const HalfedgeHandle h = coarse.halfedge_handle(handle, 0);
+                const int from = coarse.from_vertex_handle(h).idx(), to = coarse.to_vertex_handle(h).idx();
+                if (old.from == from && old.to == to && d.vertex_slot[static_cast<std::size_t>(from)] < 0 &&
+                    d.vertex_slot[static_cast<std::size_t>(to)] < 0)
+                    continue;
+            }
+            gone(edge_feature(e));
+        }
         EdgeState s;
         s.index = e;
-        s.present = !coarse.status(handle).deleted();
-        if (s.present) {
+        s.present = present;
+        if (present) {
             const HalfedgeHandle h = coarse.halfedge_handle(handle, 0);
             s.from = coarse.from_vertex_handle(h).idx();
             s.to = coarse.to_vertex_handle(h).idx();
-            s.raw = &g.polyline(handle);
+            s.raw = raw;
             s.length = g.length(handle);
-        }
-        if (e < base_ne) {
-            const EdgeState& old = base.edges[static_cast<std::size_t>(e)];
-            if (old.present == s.present &&
-                (!s.present || (old.raw == s.raw && old.length == s.length && old.from == s.from && old.to == s.to &&
-                                d.vertex_slot[static_cast<std::size_t>(s.from)] < 0 &&
-                                d.vertex_slot[static_cast<std::size_t>(s.to)] < 0)))
-                continue;
-            gone(edge_feature(e));
-        }
-        if (s.present) {
             s.canonical = known.shared_canonical(g, handle);
             if (!s.canonical) s.canonical = std::make_shared<const Polyline>(canonical_polyline(mesh, *s.raw, e));
         }
@@ -430,9 +466,11 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
         d.rotation_start.assign(1, 0);
         d.corners_violated.assign(static_cast<std::size_t>(nv), 0);
     }
+    const std::vector<unsigned char> may_differ = full ? std::vector<unsigned char>() : corners_that_may_differ(base, g, d);
     std::vector<int> around;
     std::vector<double> angles;
     for (int v = 0; v < nv; ++v) {
+        if (!full && !may_differ[static_cast<std::size_t>(v)]) continue;
         const bool differs = d.vertex_slot[static_cast<std::size_t>(v)] >= 0;
         const bool was_violated = v < base_nv && base.corners_violated[static_cast<std::size_t>(v)];
         around.clear();

@@ -29,8 +29,17 @@ struct SurfacePoint {
     static SurfacePoint on_edge(int v0, int v1, double t);
     static SurfacePoint in_face(int f, const std::array<double, 3>& bary);
 
-    /// Exact equality of kind and of the kind's fields.
-    bool operator==(const SurfacePoint& other) const;
+    /// Exact equality of kind and of the kind's fields. Inline: polylines and locations are compared by the
+    /// thousand in every check of G.
+    bool operator==(const SurfacePoint& other) const {
+        if (kind != other.kind) return false;
+        switch (kind) {
+            case PointKind::vertex: return vertex == other.vertex;
+            case PointKind::edge: return edge_v0 == other.edge_v0 && edge_v1 == other.edge_v1 && t == other.t;
+            case PointKind::face: return face == other.face && bary == other.bary;
+        }
+        return false;
+    }
     bool operator!=(const SurfacePoint& other) const { return !(*this == other); }
 };
 
