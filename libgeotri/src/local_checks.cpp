@@ -10,8 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <string>
+#include <vector>
 
 namespace geotri::detail {
 
@@ -34,35 +34,62 @@ struct Piece {
 };
 
 /// The fine faces that hold the straight segment from p to q: one, or the two faces of the fine edge they lie on.
-std::vector<int> faces_of_segment(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q) {
+struct SegmentFaces {
+    std::array<int, 2> face{-1, -1};
+    int count = 0;
+};
+SegmentFaces faces_of_segment(const Mesh& mesh, const SurfacePoint& p, const SurfacePoint& q) {
+    SegmentFaces faces;
     if (on_common_edge(mesh, p, q)) {
         const auto [a, b] = common_edge(p, q);
-        std::vector<int> faces;
         for (int h : {mesh.find_halfedge(a, b), mesh.find_halfedge(b, a)})
-            if (h >= 0) faces.push_back(Mesh::face_of(h));
+            if (h >= 0) faces.face[static_cast<std::size_t>(faces.count++)] = Mesh::face_of(h);
         return faces;
     }
     const int f = common_face(mesh, p, q);
     if (f < 0) throw InvalidInput("a polyline has consecutive points on no common fine face");
-    return {f};
+    faces.face[0] = f;
+    faces.count = 1;
+    return faces;
 }
 
-using PiecesByFace = std::map<int, std::vector<Piece>>;
+/// Pieces with the fine face that holds each, in the order they were added until by_face() sorts them by face
+/// (stably: within a face, still in that order). A flat list: a map of lists cost a node and a list per face, and
+/// every check of a new geodesic makes a few.
+struct FacePiece {
+    int face;
+    Piece piece;
+};
+using Pieces = std::vector<FacePiece>;
 
-/// Adds the pieces of `line` to `pieces` by fine face; `end_tag` holds the tags of its first and last point. With
-/// `only`, just the pieces in the faces that it holds pieces in: no others can meet them.
-void add_pieces(const Mesh& mesh, const Polyline& line, std::array<int, 2> end_tag, int id, PiecesByFace& pieces,
-                const PiecesByFace* only = nullptr) {
+void by_face(Pieces& pieces) {
+    std::stable_sort(pieces.begin(), pieces.end(), [](const FacePiece& a, const FacePiece& b) { return a.face < b.face; });
+}
+
+/// Whether `sorted` (by_face()) has a piece in face f.
+bool has_face(const Pieces& sorted, int f) {
+    const auto it = std::lower_bound(sorted.begin(), sorted.end(), f,
+                                     [](const FacePiece& a, int face) { return a.face < face; });
+    return it != sorted.end() && it->face == f;
+}
+
+/// Adds the pieces of `line` to `pieces`; `end_tag` holds the tags of its first and last point. With `only`
+/// (sorted by face), just the pieces in the faces that it holds pieces in: no others can meet them.
+void add_pieces(const Mesh& mesh, const Polyline& line, std::array<int, 2> end_tag, int id, Pieces& pieces,
+                const Pieces* only = nullptr) {
     const std::size_t n = line.size();
     auto tag_of = [&](std::size_t i) { return i == 0 ? end_tag[0] : (i + 1 == n ? end_tag[1] : -1); };
-    auto wanted = [&](int f) { return !only || only->count(f) != 0; };
+    auto wanted = [&](int f) { return !only || has_face(*only, f); };
     for (std::size_t i = 0; i + 1 < n; ++i) {
         const SurfacePoint& p = line[i];
         const SurfacePoint& q = line[i + 1];
-        for (int f : faces_of_segment(mesh, p, q))
+        const SegmentFaces faces = faces_of_segment(mesh, p, q);
+        for (int k = 0; k < faces.count; ++k) {
+            const int f = faces.face[static_cast<std::size_t>(k)];
             if (wanted(f))
-                pieces[f].push_back({halfedge_coordinates(mesh, 3 * f, p), halfedge_coordinates(mesh, 3 * f, q),
-                                     tag_of(i), tag_of(i + 1), false, id});
+                pieces.push_back({f, {halfedge_coordinates(mesh, 3 * f, p), halfedge_coordinates(mesh, 3 * f, q),
+                                      tag_of(i), tag_of(i + 1), false, id}});
+        }
     }
     for (std::size_t i = 0; i < n; ++i) {
         const SurfacePoint& p = line[i];
@@ -71,7 +98,7 @@ void add_pieces(const Mesh& mesh, const Polyline& line, std::array<int, 2> end_t
             const int f = Mesh::face_of(h);
             if (!wanted(f)) continue;
             const Eigen::Vector2d x = halfedge_coordinates(mesh, 3 * f, p);
-            pieces[f].push_back({x, x, tag_of(i), tag_of(i), true, id});
+            pieces.push_back({f, {x, x, tag_of(i), tag_of(i), true, id}});
         }
     }
 }
@@ -98,21 +125,34 @@ bool pieces_meet(const Piece& s, const Piece& r, double tolerance) {
 }  // namespace
 
 std::string first_meeting(const Mesh& mesh, const Polyline& path, const std::vector<BoundingPath>& around) {
-    PiecesByFace fresh;
+    Pieces fresh;
     add_pieces(mesh, path, {0, 1}, -1, fresh);
-    PiecesByFace bounding;
+    by_face(fresh);
+    Pieces bounding;
     for (std::size_t i = 0; i < around.size(); ++i)
         add_pieces(mesh, around[i].path, {around[i].start_tag, -1}, static_cast<int>(i), bounding, &fresh);
-    for (const auto& [f, list] : fresh) {
-        const auto it = bounding.find(f);
-        if (it == bounding.end()) continue;
-        const double tolerance =
-            k_meet_tolerance * std::max({mesh.length(3 * f), mesh.length(3 * f + 1), mesh.length(3 * f + 2)});
-        for (const Piece& s : list)
-            for (const Piece& r : it->second)
-                if (pieces_meet(s, r, tolerance))
-                    return "the new geodesic meets the polyline " +
-                           around[static_cast<std::size_t>(r.polyline)].name + " in fine face " + std::to_string(f);
+    by_face(bounding);
+    // Face by face in increasing order, and in each the pieces in the order they were added.
+    auto faces_end = [](const Pieces& pieces, Pieces::const_iterator first) {
+        return std::find_if(first, pieces.end(), [&](const FacePiece& p) { return p.face != first->face; });
+    };
+    auto r_first = bounding.cbegin();
+    for (auto s_first = fresh.cbegin(); s_first != fresh.cend();) {
+        const auto s_last = faces_end(fresh, s_first);
+        const int f = s_first->face;
+        while (r_first != bounding.cend() && r_first->face < f) ++r_first;
+        if (r_first != bounding.cend() && r_first->face == f) {
+            const auto r_last = faces_end(bounding, r_first);
+            const double tolerance =
+                k_meet_tolerance * std::max({mesh.length(3 * f), mesh.length(3 * f + 1), mesh.length(3 * f + 2)});
+            for (auto s = s_first; s != s_last; ++s)
+                for (auto r = r_first; r != r_last; ++r)
+                    if (pieces_meet(s->piece, r->piece, tolerance))
+                        return "the new geodesic meets the polyline " +
+                               around[static_cast<std::size_t>(r->piece.polyline)].name + " in fine face " +
+                               std::to_string(f);
+        }
+        s_first = s_last;
     }
     return {};
 }
