@@ -552,9 +552,7 @@ public:
             if (t.error) std::rethrow_exception(t.error);
             if (budget) budget->spent += t.work;
             if (t.better) {
-                g_ = std::move(*t.g);
-                verdicts_ = detail::PolylineVerdicts(g_, verdicts_);
-                adopt(t.report, t.cheap);
+                adopt(*t.g, t.report, t.cheap);
                 kept += t.operations;
                 // A collapse renumbers the coarse vertices, and with them the keys.
                 const int kind = moves[i].key[0];
@@ -593,11 +591,13 @@ private:
         check_count(count_->count(), report_, "G");
     }
 
-    /// G is a kept trial, with `cheap` violations of conditions 1-3, and `report` where lowers_violations() made
-    /// it: report_ becomes its (validate() without the overlay where there is none), and the count is made again.
-    /// Each is a pass over all of G, and neither needs the other: on two threads, they take half the time that
-    /// untangling spent on them between its trials (cheese: two fifths of it).
-    void adopt(std::optional<ValidationReport>& report, int cheap) {
+    /// G becomes `trial`, a kept trial with `cheap` violations of conditions 1-3, and report_ its `report` where
+    /// lowers_violations() made it, else validate() without the overlay; the count is made again from it. The two
+    /// are passes over all of G that need nothing of each other: on two threads, they take half the time that
+    /// untangling spent on them between its trials (cheese: two fifths of it). Where one throws, G is as it was.
+    void adopt(GeodesicTriangulation& trial, std::optional<ValidationReport>& report, int cheap) {
+        detail::PolylineVerdicts verdicts(trial, verdicts_);
+        std::optional<detail::ViolationCount> count;
         std::exception_ptr errors[2];
 #ifdef _OPENMP
 #pragma omp parallel sections num_threads(2) if (threads_ > 1 && !report)
@@ -610,7 +610,7 @@ private:
                 if (!report) {
                     ValidationOptions no_overlay;
                     no_overlay.overlay = false;
-                    report = detail::validate(g_, no_overlay, verdicts_);
+                    report = detail::validate(trial, no_overlay, verdicts);
                 }
             } catch (...) {
                 errors[0] = std::current_exception();
@@ -619,7 +619,7 @@ private:
 #pragma omp section
 #endif
             try {
-                count_.emplace(g_, verdicts_);
+                count.emplace(trial, verdicts);
             } catch (...) {
                 errors[1] = std::current_exception();
             }
@@ -627,8 +627,11 @@ private:
         for (const std::exception_ptr& e : errors)
             if (e) std::rethrow_exception(e);
         check_count(cheap, *report, "a kept trial");
+        check_count(count->count(), *report, "G");
+        g_ = std::move(trial);
         report_ = std::move(*report);
-        check_count(count_->count(), report_, "G");
+        verdicts_ = std::move(verdicts);
+        count_ = std::move(count);
     }
 
     /// A copy of G for the calling thread's next trial, in the storage of its last one where that was not kept

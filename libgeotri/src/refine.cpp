@@ -1240,10 +1240,8 @@ public:
     Attempts(const GeodesicTriangulation& given, const RefineResult& given_result, const RefineOptions& options,
              bool whole_checks, bool without_moves, int threads)
         : given_(given), given_result_(given_result), whole_checks_(whole_checks), progress_(options.progress),
-          options_(without_moves ? 4 : 2, options), slots_(options_.size()),
-          runner_(options_.size(), threads, [this](std::size_t k) { run(k); }) {
-        for (std::size_t k = 2; k < options_.size(); ++k) options_[k].move_vertices = false;
-    }
+          options_(options_of_attempts(options, without_moves)), slots_(options_.size()),
+          runner_(options_.size(), threads, [this](std::size_t k) { run(k); }) {}
 
     /// Attempt k, once finished; rethrows what it threw.
     const Attempt& get(std::size_t k) {
@@ -1256,6 +1254,13 @@ public:
     }
 
 private:
+    // Made before runner_, whose threads read them at once.
+    static std::vector<RefineOptions> options_of_attempts(const RefineOptions& options, bool without_moves) {
+        std::vector<RefineOptions> all(without_moves ? 4 : 2, options);
+        for (std::size_t k = 2; k < all.size(); ++k) all[k].move_vertices = false;
+        return all;
+    }
+
     void run(std::size_t k) {
         RefineOptions options = options_[k];
         if (progress_)

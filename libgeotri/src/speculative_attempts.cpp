@@ -9,13 +9,21 @@ SpeculativeAttempts::SpeculativeAttempts(std::size_t count, int threads, std::fu
     : attempt_(std::move(attempt)), state_(count, State::pending), errors_(count), cancelled_(count) {
     if (threads <= 1) return;
     const std::size_t team = std::min(count, static_cast<std::size_t>(threads));
-    for (std::size_t t = 0; t < team; ++t) threads_.emplace_back([this] { work(); });
+    try {
+        for (std::size_t t = 0; t < team; ++t) threads_.emplace_back([this] { work(); });
+    } catch (...) {  // no thread to be had: those started must be stopped and joined before this throws
+        stop_all();
+        throw;
+    }
 }
 
-SpeculativeAttempts::~SpeculativeAttempts() {
+void SpeculativeAttempts::stop_all() {
     for (std::atomic<bool>& c : cancelled_) c = true;
     for (std::thread& t : threads_) t.join();
+    threads_.clear();
 }
+
+SpeculativeAttempts::~SpeculativeAttempts() { stop_all(); }
 
 void SpeculativeAttempts::wait(std::size_t k) {
     if (cancelled_.at(k)) throw std::logic_error("SpeculativeAttempts::wait: attempt cancelled");

@@ -42,12 +42,13 @@ private:
     enum class State { pending, running, done };
     void work();  // a thread's loop: the next pending attempt, until none is left
     void run(std::size_t k);
+    void stop_all();  // cancels every attempt and joins the threads
 
     std::function<void(std::size_t)> attempt_;
     std::vector<State> state_;                    // guarded by mutex_
     std::vector<std::exception_ptr> errors_;      // guarded by mutex_
     std::vector<std::atomic<bool>> cancelled_;
-    std::atomic<long> waited_for_{-1};
+    std::atomic<long> waited_for_{0};  // the first is the one waited for first
     std::mutex mutex_;
     std::condition_variable finished_;
     std::vector<std::thread> threads_;

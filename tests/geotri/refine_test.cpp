@@ -153,6 +153,50 @@ TEST(Refine, bundled_bob_reaches_30_degrees) {
     check_min_angle(traced(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply", 100), 30.0, "bob_small");
 }
 
+// On a T under 20000 faces, the attempts that refine() may need start together on threads of their own; on one
+// thread they run one by one, only where needed. More threads than attempts, so that all four run ahead of time: the
+// same G and the same choices. The bundled anchor at 25 degrees needs a second attempt; footbones at 30 (shared
+// data) the attempts without moves too, and keeps the first of those.
+TEST(Refine, attempts_ahead_of_time_give_what_attempts_one_by_one_give) {
+    struct Case {
+        GeodesicTriangulation g;
+        double angle;
+        const char* name;
+        bool without_moves_kept;  ///< else a second attempt made
+    };
+    std::vector<Case> cases;
+    cases.push_back({traced(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off", 320), 25.0, "anchor", false});
+    if (!test::shared_data_dir().empty())
+        cases.push_back({test::traced_in_classes(test::shared_mesh("anatomy/footbones.ply").path, "footbones", false),
+                         30.0, "footbones", true});
+    else
+        std::cout << "[ refine   ] shared meshes not found at '" << test::configured_shared_data_dir()
+                  << "': footbones skipped\n";
+    for (Case& c : cases) {
+        flip_to_delaunay(c.g);
+        RefineOptions options;
+        options.min_angle_deg = c.angle;
+        options.threads = 1;
+        GeodesicTriangulation one_by_one = c.g;
+        const RefineResult sequential = refine(one_by_one, options);
+        options.threads = 5;
+        const RefineResult ahead = refine(c.g, options);
+        std::cout << "[ refine   ] " << c.name << ": second attempt " << ahead.second_attempt << ", without moves "
+                  << ahead.without_moves_tried << " (kept " << ahead.without_moves_kept << ")\n";
+        if (c.without_moves_kept) {
+            EXPECT_TRUE(ahead.without_moves_kept) << c.name;
+        } else {
+            EXPECT_TRUE(ahead.second_attempt) << c.name;
+        }
+        EXPECT_EQ(polylines_of(c.g), polylines_of(one_by_one)) << c.name;
+        EXPECT_EQ(ahead.second_attempt_kept, sequential.second_attempt_kept) << c.name;
+        EXPECT_EQ(ahead.without_moves_tried, sequential.without_moves_tried) << c.name;
+        EXPECT_EQ(ahead.without_moves_kept, sequential.without_moves_kept) << c.name;
+        EXPECT_EQ(ahead.moved_vertices, sequential.moved_vertices) << c.name;
+        EXPECT_EQ(ahead.flips, sequential.flips) << c.name;
+    }
+}
+
 // The flips after each split and the reconnections run their propagations in parallel on a T as large as the bundled
 // vertebra's (34k faces), with the objects of a pool kept for the whole refinement: the same G for any thread count.
 TEST(Refine, the_result_is_the_same_for_any_thread_count) {

@@ -51,10 +51,10 @@ TEST(SpeculativeAttempts, ahead_of_time_every_attempt_gives_its_result_and_cance
             EXPECT_EQ(sums[0], 500500) << threads << " threads";
             EXPECT_EQ(sums[1], 2001000) << threads << " threads";
             EXPECT_EQ(sums[2], 4501500) << threads << " threads";
-            attempts.cancel(3);
+            // Attempt 3 starts on a thread freed by the others (it is not cancelled yet), then never ends by itself.
             while (started < 4) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            attempts.cancel(3);
         }  // returns: attempt 3 stopped
-        EXPECT_EQ(started, 4);
     }
 }
 
@@ -74,9 +74,10 @@ TEST(SpeculativeAttempts, an_error_is_rethrown_where_its_attempt_is_waited_for) 
 }
 
 TEST(SpeculativeAttempts, attempts_not_waited_for_are_cancelled_when_it_goes) {
-    std::atomic<int> stopped{0};
+    std::atomic<int> started{0}, stopped{0};
     {
         SpeculativeAttempts attempts(2, 2, [&](std::size_t k) {
+            ++started;
             try {
                 while (true) {
                     attempts.stop_if_cancelled(k);
@@ -87,9 +88,26 @@ TEST(SpeculativeAttempts, attempts_not_waited_for_are_cancelled_when_it_goes) {
                 throw;
             }
         });
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        while (started < 2) std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     EXPECT_EQ(stopped, 2);
+}
+
+TEST(SpeculativeAttempts, an_attempt_cancelled_before_it_starts_never_runs) {
+    std::atomic<bool> release{false};
+    std::vector<int> ran(3, 0);
+    {
+        SpeculativeAttempts attempts(3, 2, [&](std::size_t k) {
+            ran[k] = 1;
+            if (k < 2)  // both threads busy until released
+                while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        });
+        attempts.cancel(2);
+        release = true;
+        attempts.wait(0);
+        attempts.wait(1);
+    }
+    EXPECT_EQ(ran, (std::vector<int>{1, 1, 0}));
 }
 
 }  // namespace

@@ -60,7 +60,8 @@ struct RefineOptions {
     /// minimum angle may need (RefineResult::second_attempt, without_moves_tried): they then start together, and
     /// those found unneeded stop. 0: as many as OpenMP likes. The result is the same for any count.
     int threads = 0;
-    /// Called now and then with a line saying where refinement is.
+    /// Called now and then with a line saying where refinement is; never from two threads at once, but while
+    /// attempts run on threads of their own (see `threads`), from theirs.
     std::function<void(const std::string&)> progress;
 };
 
