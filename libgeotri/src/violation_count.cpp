@@ -309,10 +309,20 @@ void rotation(const CoarseMesh& coarse, VertexHandle v, std::vector<int>& out) {
 
 }  // namespace
 
+/// What difference() compares of an edge, apart from its state: a trial's every edge is compared, and the states
+/// are a cache line each.
+struct EdgeIdentity {
+    const Polyline* raw;  ///< null where the edge is deleted
+    double length;
+    int from, to;
+};
+
 struct ViolationCount::State {
     std::optional<GeodesicTriangulation> g;  ///< keeps g's polylines alive: no new one can take their addresses
     std::vector<EdgeState> edges;            ///< per coarse edge
     std::vector<VertexState> vertices;       ///< per coarse vertex
+    std::vector<EdgeIdentity> edge_identities;  ///< per coarse edge, from `edges`
+    std::vector<const SurfacePoint*> locations; ///< per coarse vertex: its raw location in `vertices`, or null
     std::vector<unsigned char> corners_violated;  ///< condition 2, per coarse vertex
     std::vector<int> rotation_start;         ///< per coarse vertex and one more, into rotation
     std::vector<int> rotation;
@@ -388,8 +398,8 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
         const VertexHandle handle(v);
         const bool present = !coarse.status(handle).deleted();
         if (v < base_nv) {
-            const VertexState& old = base.vertices[static_cast<std::size_t>(v)];
-            if (old.present == present && (!present || old.raw == g.location(handle))) continue;
+            const SurfacePoint* old = base.locations[static_cast<std::size_t>(v)];
+            if (present ? old && *old == g.location(handle) : !old) continue;
             gone(vertex_feature(v));
         }
         VertexState s;
@@ -415,8 +425,8 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
         const bool present = !coarse.status(handle).deleted();
         const Polyline* raw = present ? &g.polyline(handle) : nullptr;
         if (e < base_ne) {
-            const EdgeState& old = base.edges[static_cast<std::size_t>(e)];
-            if (old.present == present && (!present || (old.raw == raw && old.length == g.length(handle)))) {
+            const EdgeIdentity& old = base.edge_identities[static_cast<std::size_t>(e)];
+            if (old.raw == raw && (!present || old.length == g.length(handle))) {
                 if (!present) continue;
                 const HalfedgeHandle h = coarse.halfedge_handle(handle, 0);
                 const int from = coarse.from_vertex_handle(h).idx(), to = coarse.to_vertex_handle(h).idx();
@@ -560,6 +570,9 @@ ViolationCount::ViolationCount(const GeodesicTriangulation& g, const PolylineVer
     // Against nothing, every edge and vertex differs, in index order.
     state->edges = std::move(d.edges);
     state->vertices = std::move(d.vertices);  // the buckets point into it: moved, not copied
+    for (const EdgeState& s : state->edges)
+        state->edge_identities.push_back({s.present ? s.raw : nullptr, s.length, s.from, s.to});
+    for (const VertexState& s : state->vertices) state->locations.push_back(s.present ? &s.raw : nullptr);
     state->corners_violated = std::move(d.corners_violated);
     state->rotation_start = std::move(d.rotation_start);
     state->rotation = std::move(d.rotation);
