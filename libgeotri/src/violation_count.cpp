@@ -318,6 +318,10 @@ struct EdgeIdentity {
 };
 
 struct ViolationCount::State {
+    State() = default;
+    State(const State&) = delete;  // the buckets and `locations` point into its own vectors
+    State& operator=(const State&) = delete;
+
     std::optional<GeodesicTriangulation> g;  ///< keeps g's polylines alive: no new one can take their addresses
     std::vector<EdgeState> edges;            ///< per coarse edge
     std::vector<VertexState> vertices;       ///< per coarse vertex
