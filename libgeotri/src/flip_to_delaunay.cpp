@@ -81,9 +81,16 @@ public:
     /// Every edge flipped is appended to `flipped` when given.
     Improver(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, FlipToDelaunayResult& result,
              const std::vector<EdgeHandle>* edges = nullptr, std::vector<EdgeHandle>* flipped = nullptr)
-        : g_(g), options_(options), result_(result), dirty_(g.coarse().n_edges(), edges ? 0 : 1), flipped_(flipped) {
-        if (edges)
-            for (EdgeHandle e : *edges) dirty_.at(static_cast<std::size_t>(e.idx())) = 1;
+        : g_(g), options_(options), result_(result), flipped_(flipped) {
+        const int n = static_cast<int>(g.coarse().n_edges());
+        if (!edges) {
+            for (int e = 0; e < n; ++e) dirty_.push_back(e);
+            return;
+        }
+        for (EdgeHandle e : *edges) {
+            if (e.idx() < 0 || e.idx() >= n) throw std::out_of_range("improve: not an edge of the coarse mesh");
+            dirty_.push_back(e.idx());
+        }
     }
 
     /// Sweeps until one makes no flip or max_improve_passes is reached; counts into the result.
@@ -104,14 +111,18 @@ public:
     /// One sweep; returns the number of flips.
     int sweep() {
         const CoarseMesh& coarse = g_.coarse();
+        // The dirty edges in increasing order, each once.
         std::vector<int> edges;
-        for (std::size_t i = 0; i < dirty_.size(); ++i) {
-            if (!dirty_[i]) continue;
-            dirty_[i] = 0;
-            const EdgeHandle e(static_cast<int>(i));
-            if (coarse.status(e).deleted() || coarse.is_boundary(e) || !coarse.is_flip_ok(e)) continue;
-            edges.push_back(static_cast<int>(i));
-        }
+        edges.swap(dirty_);
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        edges.erase(std::remove_if(edges.begin(), edges.end(),
+                                   [&](int i) {
+                                       const EdgeHandle e(i);
+                                       return coarse.status(e).deleted() || coarse.is_boundary(e) ||
+                                              !coarse.is_flip_ok(e);
+                                   }),
+                    edges.end());
         std::vector<Evaluation> found(edges.size());
         for_each_parallel(edges.size(), [&](std::size_t k, geodesic::ExactGeodesic& propagation) {
             found[k] = evaluate(EdgeHandle(edges[k]), propagation);
@@ -127,7 +138,7 @@ public:
         if (ordinary) {
             for (std::size_t k : again) {
                 found[k].refused = FlipRefusal::none;  // counted when it is evaluated again
-                dirty_[static_cast<std::size_t>(edges[k])] = 1;
+                dirty_.push_back(edges[k]);
             }
         } else if (!again.empty()) {
             for_each_parallel(again.size(), [&](std::size_t i, geodesic::ExactGeodesic&) {
@@ -140,7 +151,10 @@ public:
             });
         }
 
-        std::vector<unsigned char> touched(coarse.n_edges(), 0);
+        // The edges whose faces this sweep's flips changed, sorted: a handful, where a flag per edge of G cost a pass
+        // over G at every sweep around every vertex that refinement inserts.
+        std::vector<int> touched;
+        auto was_touched = [&](int x) { return std::binary_search(touched.begin(), touched.end(), x); };
         int flips = 0;
         for (std::size_t k = 0; k < found.size(); ++k) {
             if (found[k].planned) ++result_.improve_plans;
@@ -150,16 +164,18 @@ public:
             const std::array<int, 5> quad = quad_edges(EdgeHandle(edges[k]));
             // An earlier flip of this sweep changed e's faces, or made the edge c-d that this flip would make (two
             // quads can share their opposite vertices): evaluate e again in the next sweep.
-            if (std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[static_cast<std::size_t>(x)] != 0; }) ||
-                !coarse.is_flip_ok(EdgeHandle(edges[k]))) {
-                dirty_[static_cast<std::size_t>(edges[k])] = 1;
+            if (std::any_of(quad.begin(), quad.end(), was_touched) || !coarse.is_flip_ok(EdgeHandle(edges[k]))) {
+                dirty_.push_back(edges[k]);
                 continue;
             }
             apply_flip(g_, found[k].plan);
             if (flipped_) flipped_->push_back(EdgeHandle(edges[k]));
             ++flips;
             if (found[k].plan.in_region) ++result_.improve_region_flips;
-            for (int x : quad) touched[static_cast<std::size_t>(x)] = dirty_[static_cast<std::size_t>(x)] = 1;
+            for (int x : quad) {
+                if (!was_touched(x)) touched.insert(std::lower_bound(touched.begin(), touched.end(), x), x);
+                dirty_.push_back(x);
+            }
         }
         return flips;
     }
@@ -234,7 +250,7 @@ private:
     GeodesicTriangulation& g_;
     const FlipToDelaunayOptions& options_;
     FlipToDelaunayResult& result_;
-    std::vector<unsigned char> dirty_;  ///< per edge: its faces changed since it was last evaluated
+    std::vector<int> dirty_;  ///< the edges whose faces changed since they were last evaluated (repeats allowed)
     std::vector<EdgeHandle>* flipped_;  ///< where the flipped edges go, or null
 };
 
