@@ -63,7 +63,8 @@ struct FacePiece {
 using Pieces = std::vector<FacePiece>;
 
 void by_face(Pieces& pieces) {
-    std::stable_sort(pieces.begin(), pieces.end(), [](const FacePiece& a, const FacePiece& b) { return a.face < b.face; });
+    std::stable_sort(pieces.begin(), pieces.end(),
+                     [](const FacePiece& a, const FacePiece& b) { return a.face < b.face; });
 }
 
 /// Whether `sorted` (by_face()) has a piece in face f.

@@ -30,6 +30,7 @@
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <queue>
 #include <set>
 
 namespace geotri {
@@ -253,20 +254,37 @@ public:
     }
 
     void bisect() {
+        // The longest edge not refused, the lowest index among equally long ones (what a pass over G found at every
+        // split, which made bisecting to 20000 faces quadratic): a heap of (length, edge), where an entry whose
+        // length is no longer its edge's is stale, and a split gives the edges that it and its flips changed new
+        // ones (split_edges_).
+        struct Entry {
+            double length;
+            int edge;
+            bool operator<(const Entry& other) const {
+                return length < other.length || (length == other.length && edge > other.edge);
+            }
+        };
+        std::priority_queue<Entry> longest_first;
+        for (EdgeHandle e : g_.coarse().edges()) longest_first.push({g_.length(e), e.idx()});
         std::vector<char> refused;  // per edge (splits add edges, and keep the others' indices)
         while (!cap_reached()) {
             const CoarseMesh& coarse = g_.coarse();
             refused.resize(coarse.n_edges(), 0);
-            EdgeHandle longest;
-            for (EdgeHandle e : coarse.edges())
-                if (!refused[static_cast<std::size_t>(e.idx())] &&
-                    (!longest.is_valid() || g_.length(e) > g_.length(longest)))
-                    longest = e;
-            if (!longest.is_valid()) break;
+            auto stale = [&](const Entry& x) {
+                const EdgeHandle e(x.edge);
+                return refused[static_cast<std::size_t>(x.edge)] || coarse.status(e).deleted() ||
+                       g_.length(e) != x.length;
+            };
+            while (!longest_first.empty() && stale(longest_first.top())) longest_first.pop();
+            if (longest_first.empty()) break;
+            const EdgeHandle longest(longest_first.top().edge);
             const bool too_long = options_.max_length > 0.0 && g_.length(longest) > options_.max_length;
             const bool too_few = options_.target_faces > 0 && static_cast<int>(coarse.n_faces()) < options_.target_faces;
             if (!too_long && !too_few) break;
             if (!split_edge_somewhere(longest, min_edge_)) refused[static_cast<std::size_t>(longest.idx())] = 1;
+            else
+                for (EdgeHandle e : split_edges_) longest_first.push({g_.length(e), e.idx()});
             progress("bisection");
         }
     }
@@ -590,6 +608,8 @@ private:
             return Tried::refused_shape;
         }
         replace_g(trial, &changed, &split_trial_);
+        split_edges_ = flipped;
+        for (HalfedgeHandle h : g_.coarse().voh_range(done.vertex)) split_edges_.push_back(g_.coarse().edge_handle(h));
         ++counter;
         ++new_vertices_;
         result_.flips += flips.improve_flips;
@@ -1206,6 +1226,7 @@ private:
     TrialSlot split_trial_;                ///< storage for the splits' trial copies of G
     std::vector<TrialSlot> move_trials_;  ///< and for those of the moves tried together
     long g_version_ = 0;                  ///< how many times replace_g() changed G
+    std::vector<EdgeHandle> split_edges_;  ///< the edges that the last split kept and its flips made or changed
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;

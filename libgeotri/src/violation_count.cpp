@@ -480,7 +480,8 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
         d.rotation_start.assign(1, 0);
         d.corners_violated.assign(static_cast<std::size_t>(nv), 0);
     }
-    const std::vector<unsigned char> may_differ = full ? std::vector<unsigned char>() : corners_that_may_differ(base, g, d);
+    const std::vector<unsigned char> may_differ =
+        full ? std::vector<unsigned char>() : corners_that_may_differ(base, g, d);
     std::vector<int> around;
     std::vector<double> angles;
     for (int v = 0; v < nv; ++v) {
