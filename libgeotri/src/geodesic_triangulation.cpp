@@ -75,6 +75,7 @@ GeodesicTriangulation& GeodesicTriangulation::operator=(GeodesicTriangulation&& 
     fine_ = std::move(other.fine_);
     coarse_ = std::move(other.coarse_);
     take_handles(other);
+    reserved_ = other.reserved_;
     return *this;
 }
 
@@ -94,6 +95,7 @@ void GeodesicTriangulation::assign(const GeodesicTriangulation& other) {
     if (!has_property_names(*coarse_, every_gs) || !has_property_names(*other.coarse_, every_gs)) {
         *coarse_ = *other.coarse_;
         take_handles(other);
+        reserved_ = {};  // OpenMesh's copy: what its storage holds is not known here
         return;
     }
     // The connectivity by vector assignment (which keeps a large enough capacity), resizing every property; then
@@ -101,6 +103,14 @@ void GeodesicTriangulation::assign(const GeodesicTriangulation& other) {
     // properties the same way: a polyline pointer that is the same is not even counted again.
     CoarseMesh& mesh = *coarse_;
     const CoarseMesh& from = *other.coarse_;
+    // Vector assignment keeps the storage only where it is large enough, and reallocates to the exact size where
+    // not: a trial copy of a G that grows by a few elements at every step (refinement) reallocated and wrote fresh
+    // memory for every array at every copy. The storage is reserved with room to grow.
+    const std::array<std::size_t, 3> needed{from.n_vertices(), from.n_edges(), from.n_faces()};
+    if (needed[0] > reserved_[0] || needed[1] > reserved_[1] || needed[2] > reserved_[2]) {
+        for (std::size_t i = 0; i < 3; ++i) reserved_[i] = std::max(reserved_[i], needed[i] + needed[i] / 4 + 16);
+        mesh.reserve(reserved_[0], reserved_[1], reserved_[2]);
+    }
     mesh.assign_connectivity(from);
     mesh.property(mesh.vertex_status_pph()) = from.property(from.vertex_status_pph());
     mesh.property(mesh.halfedge_status_pph()) = from.property(from.halfedge_status_pph());

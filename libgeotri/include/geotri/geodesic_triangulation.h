@@ -7,6 +7,8 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include <array>
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -79,6 +81,8 @@ private:
     OpenMesh::VPropHandleT<SurfacePoint> location_;
     OpenMesh::EPropHandleT<std::shared_ptr<const Polyline>> polyline_;  // null: not traced
     OpenMesh::EPropHandleT<double> length_;
+    /// Vertices, edges and faces that the coarse mesh's storage has been reserved for (assign()); 0 when unknown.
+    std::array<std::size_t, 3> reserved_{};
 };
 
 }  // namespace geotri
