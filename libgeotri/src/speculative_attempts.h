@@ -15,7 +15,7 @@
 
 namespace geotri::detail {
 
-/// Thrown by an attempt that saw SpeculativeAttempts::cancelled() for itself; nobody waits for its result.
+/// Thrown by SpeculativeAttempts::stop_if_cancelled() in an attempt that was cancelled; nobody waits for its result.
 struct AttemptCancelled {};
 
 class SpeculativeAttempts {
@@ -31,7 +31,7 @@ public:
 
     /// Returns once attempt k has finished (running it first when no thread has); rethrows what it threw.
     void wait(std::size_t k);
-    /// Attempt k's result will not be asked for: it is not started, or told to stop (cancelled()).
+    /// Attempt k's result will not be asked for: it is not started, or told to stop (stop_if_cancelled()).
     void cancel(std::size_t k);
     /// Throws AttemptCancelled where attempt k was cancelled.
     void stop_if_cancelled(std::size_t k) const;
