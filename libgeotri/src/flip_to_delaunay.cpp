@@ -7,6 +7,7 @@
 
 #include "parallel_propagations.h"
 #include "polyline_verdicts.h"
+#include "thread_count.h"
 #include "violation_count.h"
 
 #include <algorithm>
@@ -488,11 +489,7 @@ public:
               FlipToDelaunayResult& result)
         : g_(g), report_(report), result_(result), given_propagation_(options.propagation), verdicts_(g, {}) {
         recount();
-#ifdef _OPENMP
-        threads_ = options.threads > 0 ? options.threads : omp_get_max_threads();
-#else
-        (void)options;
-#endif
+        threads_ = detail::team_size(options.threads);
         propagations_.resize(static_cast<std::size_t>(threads_));
         trial_storage_.resize(static_cast<std::size_t>(threads_));
     }

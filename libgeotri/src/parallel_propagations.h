@@ -6,6 +6,8 @@
 #include <geodesic/mesh.h>
 #include <geotri/propagation_pool.h>
 
+#include "thread_count.h"
+
 #include <cstddef>
 #include <exception>
 #include <memory>
@@ -29,12 +31,7 @@ void for_each_with_propagation(const geodesic::Mesh& mesh, std::size_t n, int th
     if (pool && &pool->mesh() != &mesh) throw std::invalid_argument("for_each_with_propagation: another mesh's pool");
     std::vector<std::exception_ptr> errors(n);
     const long count = static_cast<long>(n);
-    int team = 1;
-#ifdef _OPENMP
-    team = threads > 0 ? threads : omp_get_max_threads();
-#else
-    (void)threads;
-#endif
+    const int team = team_size(threads);
 #ifdef _OPENMP
 #pragma omp parallel num_threads(team) if (team > 1)
 #endif

@@ -15,12 +15,9 @@
 #include "plane_segments.h"
 #include "polygon_triangulation.h"
 #include "speculative_attempts.h"
+#include "thread_count.h"
 
 #include <Eigen/Dense>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include <algorithm>
 #include <array>
@@ -1236,16 +1233,6 @@ private:
     bool renumbered_ = true;  // nothing is recorded until raise_min_angle() looks
 };
 
-/// How many threads `threads` (RefineOptions::threads) stands for.
-int team_size(int threads) {
-    if (threads > 0) return threads;
-#ifdef _OPENMP
-    return omp_get_max_threads();
-#else
-    return 1;
-#endif
-}
-
 /// One refinement of the G given: its result, and what it did.
 struct Attempt {
     std::optional<GeodesicTriangulation> g;
@@ -1261,17 +1248,17 @@ public:
     Attempts(const GeodesicTriangulation& given, const RefineResult& given_result, const RefineOptions& options,
              bool whole_checks, bool without_moves, int threads)
         : given_(given), given_result_(given_result), whole_checks_(whole_checks), progress_(options.progress),
-          options_(options_of_attempts(options, without_moves)), slots_(options_.size()),
+          options_(options_of_attempts(options, without_moves)), results_(options_.size()),
           runner_(options_.size(), threads, [this](std::size_t k) { run(k); }) {}
 
     /// Attempt k, once finished; rethrows what it threw.
     const Attempt& get(std::size_t k) {
         runner_.wait(k);
-        return slots_[k];
+        return results_[k];
     }
     /// Attempt k is not needed (the other attempts after `first` in refine_given()).
     void cancel(std::size_t k) {
-        if (k < slots_.size()) runner_.cancel(k);
+        if (k < results_.size()) runner_.cancel(k);
     }
 
 private:
@@ -1290,10 +1277,10 @@ private:
                 std::lock_guard<std::mutex> lock(progress_mutex_);
                 progress_(line);
             };
-        Attempt& slot = slots_[k];
-        slot.g.emplace(given_);
-        slot.result = given_result_;
-        Refiner refiner(*slot.g, options, slot.result, k % 2 == 0 ? k_curved_fraction : k_second_curved_fraction,
+        Attempt& attempt = results_[k];
+        attempt.g.emplace(given_);
+        attempt.result = given_result_;
+        Refiner refiner(*attempt.g, options, attempt.result, k % 2 == 0 ? k_curved_fraction : k_second_curved_fraction,
                         whole_checks_, [this, k] { runner_.stop_if_cancelled(k); });
         refiner.bisect();
         refiner.raise_min_angle();
@@ -1305,7 +1292,7 @@ private:
     const bool whole_checks_;
     const std::function<void(const std::string&)>& progress_;  // the caller's own, which refine() reports to too
     std::vector<RefineOptions> options_;  // attempt k's, but for their progress
-    std::vector<Attempt> slots_;
+    std::vector<Attempt> results_;
     std::mutex progress_mutex_;
     detail::SpeculativeAttempts runner_;  // last: its threads start as it is made, and use all of the above
 };
@@ -1372,7 +1359,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     // On a small T each attempt runs on one thread (k_min_faces_for_threads): those that may be needed then start
     // together, on threads of their own.
     const int attempt_threads = options.min_angle_deg > 0.0 && g.fine().mesh.num_faces() < k_min_faces_for_threads
-                                    ? team_size(options.threads)
+                                    ? detail::team_size(options.threads)
                                     : 1;
     ValidationReport after;
     {

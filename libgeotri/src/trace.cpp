@@ -6,6 +6,7 @@
 
 #include "class_geodesics.h"
 #include "coarse_components.h"
+#include "thread_count.h"
 
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
@@ -25,10 +26,6 @@
 #include <unordered_map>
 #include <utility>
 #include <vector>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace geotri {
 
@@ -375,10 +372,7 @@ TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options) {
     std::vector<std::exception_ptr> errors(edges.size());
     std::atomic<bool> failed{false};
     int done = 0;
-    int threads = 1;
-#ifdef _OPENMP
-    threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-#endif
+    const int threads = detail::team_size(options.threads);
 #pragma omp parallel num_threads(threads)
     {
         std::unique_ptr<geodesic::ExactGeodesic> geodesic;  // one per thread, reused across edges
