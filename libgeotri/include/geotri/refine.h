@@ -49,6 +49,10 @@ struct RefineOptions {
     /// vertex bends at, when every corner that this changes (exempt or not) is then at least half the minimum
     /// angle, before the triangle is given up. With remove_vertices off, the vertices of the G given are not moved.
     bool move_vertices = true;
+    /// In the end game of --min-angle (at most 4 faces below it), where a triangle would be given up: split an edge
+    /// at a saddle of T that its geodesic bends at, in the triangle's circumcircle, even closer to a coarse vertex
+    /// than the shortest edge that refinement makes elsewhere (down to the shortest edge of T there).
+    bool split_at_saddles = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
     /// where angle refinement cascades instead of converging (it does on some curved meshes at 25-30 degrees), it
@@ -74,6 +78,7 @@ struct RefineResult {
     int removed_vertices = 0;          ///< vertices taken out (RefineOptions::remove_vertices)
     int moved_vertices = 0;            ///< vertices moved within their star, to raise a corner or narrow one
     int moves_onto_saddles = 0;        ///< of those, the moves onto a saddle of T that a geodesic bent at
+    int splits_at_saddles = 0;         ///< edge splits at a saddle of T that the edge's geodesic bent at
     int flips = 0;
     int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
     int small_corners_left = 0;        ///< other corners below the minimum angle, where refinement gave up

@@ -3,6 +3,7 @@
 // fine_mesh.h: geotri_test_support links only libgeodesic, so a test that includes this header links libgeotri.
 
 #include <geotri/decimate.h>
+#include <geotri/decimate_backoff.h>
 #include <geotri/edge_paths_io.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/trace.h>
@@ -63,7 +64,8 @@ inline CoarseMesh decimated_coarse(const FineMesh& fine, std::size_t target_face
     return make_coarse_mesh(decimate(fine, options).coarse, "decimated");
 }
 
-/// The mesh at `path`, decimated to its coarsest or to 320 faces and traced in the decimation's classes, as the
+/// The mesh at `path`, decimated to its coarsest or to 320 faces (backing off where the topology stops it above
+/// them with geodesics that tangle, as geotri-decimate does) and traced in the decimation's classes, as the
 /// pipeline does.
 inline GeodesicTriangulation traced_in_classes(const std::string& path, const std::string& name, bool coarsest) {
     auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
@@ -72,7 +74,7 @@ inline GeodesicTriangulation traced_in_classes(const std::string& path, const st
         options.coarsest = true;
     else
         options.target_faces = 320;
-    const DecimateResult decimated = decimate(*fine, options);
+    const DecimateResult decimated = decimate_backing_off(fine, options).decimation;
     const EdgePaths paths = make_edge_paths(*fine, decimated);
     GeodesicTriangulation traced(fine, make_coarse_mesh(decimated.coarse, name));
     TraceOptions trace_options;
