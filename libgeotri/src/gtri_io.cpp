@@ -11,6 +11,7 @@
 #include <geotri/gtri_io.h>
 #include <geotri/trace.h>
 
+#include <array>
 #include <charconv>
 #include <cerrno>
 #include <cmath>
@@ -359,6 +360,14 @@ GeodesicTriangulation build(const LineReader& in, RawGtri raw, std::shared_ptr<c
     return g;
 }
 
+/// f's vertices in the order that write_gtri() writes them.
+std::array<int, 3> corners_of(const CoarseMesh& coarse, OpenMesh::FaceHandle f) {
+    std::array<int, 3> corners{};
+    auto fv = coarse.cfv_iter(f);
+    for (std::size_t i = 0; i < 3; ++i, ++fv) corners[i] = fv->idx();
+    return corners;
+}
+
 RawGtri parse_file(LineReader& in) {
     int fine_line = 0;
     GtriHeader header = parse_header(in, &fine_line);
@@ -410,10 +419,10 @@ void write_gtri(const std::string& path, const GeodesicTriangulation& g) {
     append_int(out, static_cast<long long>(coarse.n_faces()));
     out += '\n';
     for (auto f : coarse.faces()) {
-        auto fv = coarse.cfv_iter(f);
-        for (int i = 0; i < 3; ++i, ++fv) {
+        const std::array<int, 3> corners = corners_of(coarse, f);
+        for (std::size_t i = 0; i < 3; ++i) {
             if (i > 0) out += ' ';
-            append_int(out, fv->idx());
+            append_int(out, corners[i]);
         }
         out += '\n';
         flush_if_full();
@@ -443,6 +452,22 @@ void write_gtri(const std::string& path, const GeodesicTriangulation& g) {
     out += "end\n";
     file.write(out);
     file.commit();
+}
+
+GeodesicTriangulation renumbered_as_read(const GeodesicTriangulation& g) {
+    const CoarseMesh& coarse = g.coarse();
+    MeshData faces;  // positions are placeholders, as in a file's faces
+    faces.positions.assign(coarse.n_vertices(), Eigen::Vector3d::Zero());
+    for (auto f : coarse.faces()) faces.triangles.push_back(corners_of(coarse, f));
+    GeodesicTriangulation out(g.shared_fine(), make_coarse_mesh(faces, ""));
+    for (auto v : coarse.vertices()) out.set_location(v, g.location(v));
+    for (auto e : coarse.edges()) {
+        const OpenMesh::HalfedgeHandle h = coarse.halfedge_handle(e, 0);
+        if (!g.polyline(e).empty())
+            out.set_path(out.coarse().find_halfedge(coarse.from_vertex_handle(h), coarse.to_vertex_handle(h)),
+                         g.polyline(e));
+    }
+    return out;
 }
 
 GtriHeader read_gtri_header(const std::string& path) {

@@ -1,6 +1,7 @@
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
 #include <geotri/flip.h>
+#include <geotri/gtri_io.h>
 #include <geotri/propagation_pool.h>
 #include <geotri/reconnect.h>
 #include <geotri/refine.h>
@@ -1377,6 +1378,9 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         throw InvalidInput("refine: G is not valid (" + std::to_string(before.violations.size()) +
                            " violations); make it valid first (geotri-flip)");
     result.angles_before = corner_angle_stats(g);
+    // Refinement's choices follow the numbering of G's edges and halfedges, which flips change: numbered as reading
+    // its file numbers it, a G flipped in memory refines as geotri-refine refines geotri-flip's output.
+    g = renumbered_as_read(g);
 
     // The G given, for the attempts after the first and for the safety net (a copy shares the polylines).
     const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;

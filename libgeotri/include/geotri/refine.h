@@ -110,7 +110,8 @@ struct RefineResult {
 
 /// Refines G as `options` say. Throws InvalidInput when G is not valid (refinement keeps a valid G valid; make it
 /// valid first with flip_to_delaunay()) or when an option is out of range. Deterministic: the same result for any
-/// RefineOptions::threads.
+/// RefineOptions::threads, and the same for a G in memory as for that G written and read back (G is first numbered
+/// as reading numbers it: renumbered_as_read()).
 RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options);
 
 }  // namespace geotri
