@@ -49,7 +49,7 @@ struct RefineOptions {
     /// vertex bends at, when every corner that this changes (exempt or not) is then at least half the minimum
     /// angle, before the triangle is given up. With remove_vertices off, the vertices of the G given are not moved.
     bool move_vertices = true;
-    /// In the end game of --min-angle (at most 4 faces below it), where a triangle would be given up: split an edge
+    /// In the end game of min_angle_deg (at most 4 faces below it), where a triangle would be given up: split an edge
     /// at a saddle of T that its geodesic bends at, in the triangle's circumcircle, even closer to a coarse vertex
     /// than the shortest edge that refinement makes elsewhere (down to the shortest edge of T there).
     bool split_at_saddles = true;
