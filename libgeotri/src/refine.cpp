@@ -313,23 +313,21 @@ public:
                 budget_ *= 2;
             }
             if (cap_reached()) break;
-            // A face below the angle with an edge shorter than refinement refines (min_edge_of(), often an edge that
-            // a flip made) was left as it was: gears and skull_thing74168 at 25 degrees had 28 of 36 and 30 of 32
-            // such faces left. Once nothing else is left to mend, each gets a removal or a vertex move, which make
-            // no triangle: skull_thing74168 then reaches the angle (from 6.1 degrees), as cheese does.
-            const FaceHandle tiny =
-                worst.is_valid() || widest.is_valid() ? FaceHandle() : faces.first_tiny(not_given_up);
-            if (tiny.is_valid()) {
-                if (remove_a_vertex_of(tiny)) {
-                    given_up.clear();  // the coarse mesh was renumbered
+            if (!worst.is_valid() && !widest.is_valid()) {
+                // A face below the angle with an edge shorter than refinement refines (min_edge_of(), often an edge
+                // that a flip made) was left as it was: gears and skull_thing74168 at 25 degrees had 28 of 36 and 30
+                // of 32 such faces left. Once nothing else is left to mend, each gets a removal or a vertex move,
+                // which make no triangle: skull_thing74168 then reaches the angle (from 6.1 degrees), as cheese does.
+                if (const FaceHandle tiny = faces.first_tiny(not_given_up); tiny.is_valid()) {
+                    if (remove_a_vertex_of(tiny)) {
+                        given_up.clear();  // the coarse mesh was renumbered
+                        continue;
+                    }
+                    if (!(options_.move_vertices && may_move() && move_a_vertex_of(tiny, &given_up, MoveGoal{})))
+                        given_up.insert(vertices_of(coarse, tiny));
+                    progress("small triangles");
                     continue;
                 }
-                if (!(options_.move_vertices && may_move() && move_a_vertex_of(tiny, &given_up, MoveGoal{})))
-                    given_up.insert(vertices_of(coarse, tiny));
-                progress("small triangles");
-                continue;
-            }
-            if (!worst.is_valid() && !widest.is_valid()) {
                 // A vertex that refinement inserted can stand in the way of a face given up, where only a removal
                 // mends it (boxpart at 30 degrees): once, the vertices inserted so far become removable too, and
                 // the faces given up are tried again.
@@ -359,7 +357,7 @@ public:
             // split at a saddle of T that its geodesic bends at (split_at_saddle()).
             if (!refine_face(worst) &&
                 !(options_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, saddle_move)) &&
-                !(faces.count_below([](int) { return true; }) <= k_few_corners_left && split_at_saddle(worst)))
+                !(faces.size_below() <= k_few_corners_left && split_at_saddle(worst)))
                 given_up.insert(vertices_of(coarse, worst));
             progress("angle refinement");
         }
@@ -456,6 +454,8 @@ private:
         /// The first face below the angle but too small to refine (corner_range()) for which `take` holds.
         template <class Take>
         FaceHandle first_tiny(Take take) const { return first_in(tiny_, take); }
+        /// How many faces are below the angle (not counting those too small to refine).
+        std::size_t size_below() const { return below_.size(); }
         template <class Take>
         std::size_t count_below(Take take) const {
             return static_cast<std::size_t>(
@@ -1103,8 +1103,10 @@ private:
         if (!found) return false;
         const int cone = *found;
         const double floor = std::max(0.5 * smallest_corner(f), keep_above_), min_length = min_edge_of(f);
-        const CoarseMesh& coarse = g_.coarse();
         const geodesic::Mesh& mesh = g_.fine().mesh;
+        double feature = min_length;  // the shortest edge that the split may make
+        for (int x : mesh.outgoing_halfedges(cone)) feature = std::min(feature, mesh.length(x));
+        const CoarseMesh& coarse = g_.coarse();
         for (VertexHandle v : coarse.fv_range(f))
             for (HalfedgeHandle h : coarse.voh_range(v)) {
                 const EdgeHandle e = coarse.edge_handle(h);
@@ -1114,8 +1116,6 @@ private:
                     auto split = [&](GeodesicTriangulation& trial) {
                         return split_edge_at_point(trial, e, i, split_options(false));
                     };
-                    double feature = min_length;
-                    for (int x : mesh.outgoing_halfedges(cone)) feature = std::min(feature, mesh.length(x));
                     // No two geodesics of a valid G meet: this is the only one through the vertex.
                     if (try_split(split, std::max(floor, floor_at(e)), feature, result_.edge_splits) != Tried::kept)
                         return false;
