@@ -876,8 +876,9 @@ private:
     /// triangles whose corners the bumps distort; moving a vertex mends a corner without making a triangle.
     /// Vertices at curved points of T stay, and so do those of the G given with RefineOptions::remove_vertices
     /// off. Each move that raises the minimum angle raises the smallest corner of the faces it changes and leaves
-    /// the others as they are. The candidates are tried in parallel (each with its flips on one thread), and the
-    /// choice does not depend on the thread count. The faces that the move changes leave `given_up` (when given).
+    /// the others as they are. The candidates are tried in parallel (each with its flips on one thread; a lone one
+    /// with its flips on all), and the choice does not depend on the thread count. The faces that the move changes
+    /// leave `given_up` (when given).
     bool move_a_vertex_of(FaceHandle f, std::set<std::array<int, 3>>* given_up, const MoveGoal& goal) {
         std::vector<MoveCandidate> candidates;
         for (VertexHandle v : g_.coarse().fv_range(f)) {
@@ -901,10 +902,14 @@ private:
         }
         if (move_trials_.size() < candidates.size()) move_trials_.resize(candidates.size());
         for (std::size_t k = 0; k < candidates.size(); ++k) candidates[k].slot = &move_trials_[k];
-        detail::for_each_with_propagation(
-            g_.fine().mesh, candidates.size(), flip_options_.threads,
-            [&](std::size_t k, geodesic::ExactGeodesic& propagation) { try_move(candidates[k], propagation, goal); },
-            &propagation_, &pool_);
+        // A lone candidate would leave every thread but one idle: its flips then run on all of them instead.
+        auto try_one = [&](std::size_t k, geodesic::ExactGeodesic& propagation) {
+            try_move(candidates[k], propagation, goal);
+        };
+        if (candidates.size() == 1) try_move(candidates[0], propagation_, goal, true);
+        else
+            detail::for_each_with_propagation(g_.fine().mesh, candidates.size(), flip_options_.threads, try_one,
+                                              &propagation_, &pool_);
         MoveCandidate* best = nullptr;
         for (MoveCandidate& c : candidates) {
             if (!c.moved && !goal.narrow && !c.numerical_trouble) failed_moves_.insert(c.key);
@@ -931,17 +936,20 @@ private:
 
     bool may_move() const { return result_.moved_vertices / k_moves_per_new_vertex < budget_; }
 
-    /// One move of move_a_vertex_of(), on a copy of G, with `propagation` for its geodesics and flips. A move only
-    /// tries to do better: one that meets numerical trouble is not made.
-    void try_move(MoveCandidate& c, geodesic::ExactGeodesic& propagation, const MoveGoal& goal) const {
+    /// One move of move_a_vertex_of(), on a copy of G, with `propagation` for its geodesics and flips (`alone`:
+    /// the flips on the threads of flip_options_, `propagation` being propagation_). A move only tries to do better:
+    /// one that meets numerical trouble is not made.
+    void try_move(MoveCandidate& c, geodesic::ExactGeodesic& propagation, const MoveGoal& goal,
+                  bool alone = false) const {
         try {
-            try_move_or_throw(c, propagation, goal);
+            try_move_or_throw(c, propagation, goal, alone);
         } catch (const NumericalError&) {
             c.moved = nullptr;
             c.numerical_trouble = true;
         }
     }
-    void try_move_or_throw(MoveCandidate& c, geodesic::ExactGeodesic& propagation, const MoveGoal& goal) const {
+    void try_move_or_throw(MoveCandidate& c, geodesic::ExactGeodesic& propagation, const MoveGoal& goal,
+                           bool alone) const {
         const std::optional<SurfacePoint> target = c.target ? c.target : star_centroid(c.vertex);
         if (!target) return;
         GeodesicTriangulation& trial = trial_copy(*c.slot);
@@ -955,11 +963,13 @@ private:
         if (options_.flip) {
             std::vector<EdgeHandle> edges = link_edges(coarse, c.vertex);
             for (HalfedgeHandle h : coarse.voh_range(c.vertex)) edges.push_back(coarse.edge_handle(h));
-            FlipToDelaunayOptions one_thread = flip_options_;
-            one_thread.threads = 1;
-            one_thread.propagation = &propagation;
-            one_thread.propagations = nullptr;
-            improve_around(trial, edges, one_thread, flips, &flipped);
+            FlipToDelaunayOptions around = flip_options_;
+            if (!alone) {  // one thread of a parallel loop over the candidates
+                around.threads = 1;
+                around.propagation = &propagation;
+                around.propagations = nullptr;
+            }
+            improve_around(trial, edges, around, flips, &flipped);
         }
         // Every face at the vertex changed (its corners did, though not its vertices), and those of the flipped
         // edges.
