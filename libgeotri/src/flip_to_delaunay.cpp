@@ -7,6 +7,7 @@
 
 #include "parallel_propagations.h"
 #include "polyline_verdicts.h"
+#include "stale_trials.h"
 #include "thread_count.h"
 #include "violation_count.h"
 
@@ -485,9 +486,12 @@ struct WorkBudget {
 /// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
 class Untangler {
 public:
+    /// `skip_known_failures`: flips known to fail again are not tried (StaleTrials). Not inside a trial that a
+    /// budget of work bounds: a flip not tried spends no work, and the budget would run out elsewhere.
     Untangler(GeodesicTriangulation& g, ValidationReport& report, const FlipToDelaunayOptions& options,
-              FlipToDelaunayResult& result)
-        : g_(g), report_(report), result_(result), given_propagation_(options.propagation), verdicts_(g, {}) {
+              FlipToDelaunayResult& result, bool skip_known_failures)
+        : g_(g), report_(report), result_(result), skip_known_failures_(skip_known_failures),
+          given_propagation_(options.propagation), verdicts_(g, {}) {
         recount();
         threads_ = detail::team_size(options.threads);
         propagations_.resize(static_cast<std::size_t>(threads_));
@@ -511,8 +515,14 @@ public:
             int operations = 0;
             std::size_t work = 0;  ///< windows that the move's propagations made
             bool better = false;
+            std::vector<int> faces;  ///< a flip that failed: the fine faces that its judgement read (StaleTrials)
             std::exception_ptr error;
         };
+        // Without a budget, while conditions 1-3 fail, a flip that failed before is known to fail again where
+        // nothing that it read has changed (StaleTrials): conditions 1-3 are counted from what a trial changes,
+        // and a trial is better when that count drops. With no such violations left, condition 4 decides, which
+        // all of G takes part in.
+        const bool known_failures = skip_known_failures_ && !budget && cheap_count(report_) > 0;
         const CountViolations count_trial = [this](const GeodesicTriangulation& trial) {
             return count_->count(trial, verdicts_);
         };
@@ -536,20 +546,27 @@ public:
                 if (k > last) continue;
             }
             Trial& t = trials[k];
-            try {
-                GeodesicTriangulation& trial = trial_copy();
-                geodesic::ExactGeodesic& p = propagation();
-                const std::size_t work_before = p.windows_created_total();
+            const bool flip_move = known_failures && moves[k].key[0] == k_flip;
+            if (const std::optional<int> known = flip_move ? stale_.known_failure(moves[k].key) : std::nullopt) {
+                t.operations = *known;  // it failed before, and nothing that it read has changed since
+            } else {
                 try {
-                    t.operations = moves[k].run(trial, p, count_trial);
-                } catch (const InvalidInput&) {
-                    t.operations = 0;
+                    GeodesicTriangulation& trial = trial_copy();
+                    geodesic::ExactGeodesic& p = propagation();
+                    const std::size_t work_before = p.windows_created_total();
+                    try {
+                        t.operations = moves[k].run(trial, p, count_trial);
+                    } catch (const InvalidInput&) {
+                        t.operations = 0;
+                    }
+                    t.work = p.windows_created_total() - work_before;
+                    t.better = t.operations > 0 &&
+                               lowers_violations(trial, report_, verdicts_, *count_, t.cheap, t.report);
+                    if (t.better) t.g.emplace(std::move(trial));  // takes the coarse mesh along
+                    else if (flip_move && t.operations > 0) t.faces = detail::StaleTrials::changed_faces(g_, trial);
+                } catch (...) {
+                    t.error = std::current_exception();
                 }
-                t.work = p.windows_created_total() - work_before;
-                t.better = t.operations > 0 && lowers_violations(trial, report_, verdicts_, *count_, t.cheap, t.report);
-                if (t.better) t.g.emplace(std::move(trial));  // takes the coarse mesh along
-            } catch (...) {
-                t.error = std::current_exception();
             }
             std::lock_guard<std::mutex> lock(progress);
             finished[k] = 1;
@@ -570,11 +587,12 @@ public:
                 // A collapse renumbers the coarse vertices, and with them the keys.
                 const int kind = moves[i].key[0];
                 if (kind == k_collapse || kind == k_collapse_and_untangle || kind == k_collapse_and_untangle_nested)
-                    failed_.clear();
+                    forget_failures();
                 return true;
             }
             ++(t.operations == 0 ? result_.untangle_refused : result_.untangle_rejected);
             failed_.insert(moves[i].key);
+            if (!t.faces.empty()) stale_.failed(moves[i].key, std::move(t.faces), t.operations);
             if (budget && budget->spent_all() && i + 1 < n) {
                 result_.thorough_budget_spent = true;
                 return false;  // the moves after it are dropped uncounted, as after a kept one
@@ -594,10 +612,16 @@ public:
         // trial (lowers_violations()), so that untangling goes on with what is left of it.
         if (cheap_count(report_) == 0) add_overlay_check(g_, report_);
         recount();
-        failed_.clear();
+        forget_failures();
     }
 
 private:
+    /// The coarse elements were renumbered: the keys name others now.
+    void forget_failures() {
+        failed_.clear();
+        stale_.clear();
+    }
+
     /// Keeps what it takes to count the violations of trial copies of G from what they change.
     void recount() {
         count_.emplace(g_, verdicts_);
@@ -641,6 +665,7 @@ private:
             if (e) std::rethrow_exception(e);
         check_count(cheap, *report, "a kept trial");
         check_count(count->count(), *report, "G");
+        stale_.changed(detail::StaleTrials::changed_faces(g_, trial));
         g_ = std::move(trial);
         report_ = std::move(*report);
         verdicts_ = std::move(verdicts);
@@ -675,11 +700,13 @@ private:
     GeodesicTriangulation& g_;
     ValidationReport& report_;
     FlipToDelaunayResult& result_;
+    bool skip_known_failures_;
     int threads_ = 1;
     geodesic::ExactGeodesic* given_propagation_;  ///< FlipToDelaunayOptions::propagation, the calling thread's
     std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread without a given one
     std::vector<std::optional<GeodesicTriangulation>> trial_storage_;      ///< one per thread (trial_copy())
     std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
+    detail::StaleTrials stale_;            ///< the flips among them that are known to fail again
     detail::PolylineVerdicts verdicts_;    ///< condition 1 on G's polylines, for judging the trials
     std::optional<detail::ViolationCount> count_;  ///< G's violations of conditions 1-3, to count the trials'
 };
@@ -697,7 +724,8 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
               ValidationReport& report, const std::vector<SurfacePoint>* focus = nullptr,
               bool keep_bisection_vertices = false) {
     if (cheap_count(report) > 0) report = without_condition_4(std::move(report));
-    Untangler untangler(g, report, options, result);
+    // A focus is given only to the untangling inside a trial, which a budget of work bounds.
+    Untangler untangler(g, report, options, result, focus == nullptr);
     // The violations that moves are sought for: all, or with a focus those that name a coarse vertex there.
     ValidationReport named;
     auto try_flips = [&] {

@@ -18,6 +18,7 @@
 #include <geotri_test/procedural_meshes.h>
 
 #include "polyline_verdicts.h"  // libgeotri/src: untangling's verdicts kept between validations
+#include "stale_trials.h"       // libgeotri/src: the fine faces that a trial's count reads
 #include "violation_count.h"    // libgeotri/src: untangling's count of violations from what a trial changed
 
 #include <gtest/gtest.h>
@@ -25,8 +26,10 @@
 #include <algorithm>
 #include <array>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -55,12 +58,14 @@ int nearby_vertex(const GeodesicTriangulation& g, VertexHandle v, std::mt19937& 
     return uniform(random, g.fine().mesh.num_vertices());
 }
 
-/// One random change of g, of the kinds that untangling makes or of kinds that break G otherwise; returns its
-/// name, or "" when it was not possible there.
-std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodesic::ExactGeodesic& propagation) {
+/// One random change of g, of the kinds that untangling makes or of kinds that break G otherwise, at edge `at_edge`
+/// or vertex `at_vertex` where given, else at random ones; returns its name, or "" when it was not possible there.
+std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodesic::ExactGeodesic& propagation,
+                          EdgeHandle at_edge = EdgeHandle(), VertexHandle at_vertex = VertexHandle()) {
     CoarseMesh& coarse = g.coarse();
-    const EdgeHandle e(uniform(random, static_cast<int>(coarse.n_edges())));
-    const VertexHandle v(uniform(random, static_cast<int>(coarse.n_vertices())));
+    const EdgeHandle e = at_edge.is_valid() ? at_edge : EdgeHandle(uniform(random, static_cast<int>(coarse.n_edges())));
+    const VertexHandle v =
+        at_vertex.is_valid() ? at_vertex : VertexHandle(uniform(random, static_cast<int>(coarse.n_vertices())));
     try {
         switch (uniform(random, 12)) {
         case 0:
@@ -215,6 +220,65 @@ TEST(ViolationCount, trials_on_a_tangled_real_mesh_count_as_validate) {
     trace(g);
     EXPECT_GT(validated(g), 0);
     EXPECT_GT(check_random_trials(g, 300, 10, 3, "anchor"), 0);
+}
+
+TEST(ViolationCount, a_flip_changes_the_count_alike_after_a_change_on_other_fine_faces) {
+    // What StaleTrials relies on: a trial's change of the count depends only on what lies on the fine faces that
+    // it reads (StaleTrials::changed_faces()). A flip is tried on G, and again on G changed nearby (at an edge or
+    // vertex within two rings of the flip's quad) by a random change of any kind that keeps the numbering (not a
+    // collapse); where the two touch no common fine face, the flip must change the count by as much on both.
+    // Oracle: validate().
+    const auto fine =
+        std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off"));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, 320));
+    trace(g);
+    const int g_count = validated(g);
+    EXPECT_GT(g_count, 0);
+    std::mt19937 random(11);
+    geodesic::ExactGeodesic propagation(g.fine().mesh);
+    FlipOptions unchecked;
+    unchecked.check_validity = false;
+    unchecked.propagation = &propagation;
+    int compared = 0, changed_count = 0;
+    for (int k = 0; k < 2000 && compared < 100; ++k) {
+        const EdgeHandle e(uniform(random, static_cast<int>(g.coarse().n_edges())));
+        GeodesicTriangulation flipped = g;
+        if (!flip(flipped, e, unchecked).accepted()) continue;
+        // The vertices within two rings of the quad, and their edges.
+        std::set<int> near_vertices, near_edges;
+        for (int side = 0; side < 2; ++side)
+            for (VertexHandle c : g.coarse().fv_range(g.coarse().face_handle(g.coarse().halfedge_handle(e, side))))
+                for (VertexHandle n : g.coarse().vv_range(c)) {
+                    near_vertices.insert(n.idx());
+                    for (HalfedgeHandle h : g.coarse().voh_range(n)) {
+                        near_vertices.insert(g.coarse().to_vertex_handle(h).idx());
+                        near_edges.insert(g.coarse().edge_handle(h).idx());
+                    }
+                }
+        auto any_of_set = [&](const std::set<int>& from) {
+            return *std::next(from.begin(), uniform(random, static_cast<int>(from.size())));
+        };
+        GeodesicTriangulation elsewhere = g;
+        const std::string change = random_change(elsewhere, random, propagation, EdgeHandle(any_of_set(near_edges)),
+                                                 VertexHandle(any_of_set(near_vertices)));
+        if (change.empty() || change == "collapse") continue;
+        const std::vector<int> read = detail::StaleTrials::changed_faces(g, flipped);
+        const std::vector<int> other = detail::StaleTrials::changed_faces(g, elsewhere);
+        std::vector<int> common;
+        std::set_intersection(read.begin(), read.end(), other.begin(), other.end(), std::back_inserter(common));
+        if (!common.empty()) continue;
+        GeodesicTriangulation both = elsewhere;
+        ASSERT_TRUE(flip(both, e, unchecked).accepted()) << "trial " << k << " (" << change << ")";
+        const int elsewhere_count = validated(elsewhere);
+        EXPECT_EQ(validated(both) - elsewhere_count, validated(flipped) - g_count)
+            << "trial " << k << ": flip of coarse edge " << e.idx() << " after " << change;
+        changed_count += elsewhere_count != g_count;
+        ++compared;
+    }
+    std::cout << "[ locality ] anchor: " << compared << " flips compared, " << changed_count
+              << " after a change that changed G's count\n";
+    EXPECT_GE(compared, 50);
+    EXPECT_GT(changed_count, 0);  // the changes elsewhere did change what is counted
 }
 
 TEST(ViolationCount, an_unchanged_copy_counts_as_g) {
