@@ -487,7 +487,7 @@ struct WorkBudget {
 class Untangler {
 public:
     /// `skip_known_failures`: flips known to fail again are not tried (StaleTrials). Not inside a trial that a
-    /// budget of work bounds: a flip not tried spends no work, and the budget would run out elsewhere.
+    /// budget of work may bound: a flip not tried spends no work, and the budget would run out elsewhere.
     Untangler(GeodesicTriangulation& g, ValidationReport& report, const FlipToDelaunayOptions& options,
               FlipToDelaunayResult& result, bool skip_known_failures)
         : g_(g), report_(report), result_(result), skip_known_failures_(skip_known_failures),
@@ -700,7 +700,7 @@ private:
     GeodesicTriangulation& g_;
     ValidationReport& report_;
     FlipToDelaunayResult& result_;
-    bool skip_known_failures_;
+    const bool skip_known_failures_;
     int threads_ = 1;
     geodesic::ExactGeodesic* given_propagation_;  ///< FlipToDelaunayOptions::propagation, the calling thread's
     std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread without a given one
@@ -724,7 +724,7 @@ void untangle(GeodesicTriangulation& g, const FlipToDelaunayOptions& options, Fl
               ValidationReport& report, const std::vector<SurfacePoint>* focus = nullptr,
               bool keep_bisection_vertices = false) {
     if (cheap_count(report) > 0) report = without_condition_4(std::move(report));
-    // A focus is given only to the untangling inside a trial, which a budget of work bounds.
+    // A focus is given only to the untangling inside a trial, which a budget of work may bound.
     Untangler untangler(g, report, options, result, focus == nullptr);
     // The violations that moves are sought for: all, or with a focus those that name a coarse vertex there.
     ValidationReport named;

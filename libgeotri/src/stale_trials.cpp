@@ -9,19 +9,28 @@ namespace geotri::detail {
 
 namespace {
 
+// G keeps its locations and polyline points in canonical form (GeodesicTriangulation::set_location(),
+// set_polyline()), as the count reads them: the faces that hold a stored point are those that the count sees.
 void add_faces_of(const geodesic::Mesh& mesh, const SurfacePoint& p, std::vector<int>& out) {
     for (int f : faces_holding(mesh, p)) out.push_back(f);
+}
+
+bool has_edge(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) {
+    return static_cast<std::size_t>(e.idx()) < g.coarse().n_edges() && !g.coarse().status(e).deleted();
+}
+
+bool has_vertex(const GeodesicTriangulation& g, OpenMesh::VertexHandle v) {
+    return static_cast<std::size_t>(v.idx()) < g.coarse().n_vertices() && !g.coarse().status(v).deleted();
 }
 
 /// Whether edge e is the same in both: present in both, with the same polyline object, length and ends, or in
 /// neither.
 bool same_edge(const GeodesicTriangulation& a, const GeodesicTriangulation& b, OpenMesh::EdgeHandle e) {
+    const bool in_a = has_edge(a, e);
+    if (in_a != has_edge(b, e)) return false;
+    if (!in_a) return true;
     const CoarseMesh& ca = a.coarse();
     const CoarseMesh& cb = b.coarse();
-    const bool in_a = static_cast<std::size_t>(e.idx()) < ca.n_edges() && !ca.status(e).deleted();
-    const bool in_b = static_cast<std::size_t>(e.idx()) < cb.n_edges() && !cb.status(e).deleted();
-    if (in_a != in_b) return false;
-    if (!in_a) return true;
     const OpenMesh::HalfedgeHandle ha = ca.halfedge_handle(e, 0), hb = cb.halfedge_handle(e, 0);
     return &a.polyline(e) == &b.polyline(e) && a.length(e) == b.length(e) &&
            ca.from_vertex_handle(ha) == cb.from_vertex_handle(hb) && ca.to_vertex_handle(ha) == cb.to_vertex_handle(hb);
@@ -37,10 +46,6 @@ void add_edge_faces(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e, std:
         add_faces_of(mesh, g.location(coarse.to_vertex_handle(coarse.halfedge_handle(e, k))), out);
 }
 
-bool has_vertex(const GeodesicTriangulation& g, OpenMesh::VertexHandle v) {
-    return static_cast<std::size_t>(v.idx()) < g.coarse().n_vertices() && !g.coarse().status(v).deleted();
-}
-
 }  // namespace
 
 std::vector<int> StaleTrials::changed_faces(const GeodesicTriangulation& g, const GeodesicTriangulation& trial) {
@@ -51,13 +56,12 @@ std::vector<int> StaleTrials::changed_faces(const GeodesicTriangulation& g, cons
         const OpenMesh::EdgeHandle e(static_cast<int>(i));
         if (same_edge(g, trial, e)) continue;
         for (const GeodesicTriangulation* side : {&g, &trial})
-            if (i < side->coarse().n_edges() && !side->coarse().status(e).deleted()) add_edge_faces(*side, e, faces);
+            if (has_edge(*side, e)) add_edge_faces(*side, e, faces);
     }
     const std::size_t vertices = std::max(g.coarse().n_vertices(), trial.coarse().n_vertices());
     for (std::size_t i = 0; i < vertices; ++i) {
         const OpenMesh::VertexHandle v(static_cast<int>(i));
-        const bool in_g = has_vertex(g, v), in_trial = has_vertex(trial, v);
-        if (in_g && in_trial && g.location(v) == trial.location(v)) continue;
+        if (has_vertex(g, v) && has_vertex(trial, v) && g.location(v) == trial.location(v)) continue;
         // Where a vertex moves, whether its edges still start at it (condition 1), and so take part in conditions 2
         // and 3, changes too, even with their polylines unchanged.
         for (const GeodesicTriangulation* side : {&g, &trial}) {

@@ -258,9 +258,11 @@ TEST(ViolationCount, a_flip_changes_the_count_alike_after_a_change_on_other_fine
         auto any_of_set = [&](const std::set<int>& from) {
             return *std::next(from.begin(), uniform(random, static_cast<int>(from.size())));
         };
+        // Drawn one after the other: the order of a call's arguments is the compiler's.
+        const EdgeHandle near_edge(any_of_set(near_edges));
+        const VertexHandle near_vertex(any_of_set(near_vertices));
         GeodesicTriangulation elsewhere = g;
-        const std::string change = random_change(elsewhere, random, propagation, EdgeHandle(any_of_set(near_edges)),
-                                                 VertexHandle(any_of_set(near_vertices)));
+        const std::string change = random_change(elsewhere, random, propagation, near_edge, near_vertex);
         if (change.empty() || change == "collapse") continue;
         const std::vector<int> read = detail::StaleTrials::changed_faces(g, flipped);
         const std::vector<int> other = detail::StaleTrials::changed_faces(g, elsewhere);
