@@ -25,6 +25,14 @@ namespace tools = geotri::tools;
 
 constexpr int k_exit_invalid = 3;
 
+/// One line on stderr about a refinement that refine() ran again from the G given: what it changed, the result kept,
+/// and why it stopped where it met numerical trouble.
+void report_again(const char* program, const char* again, const char* kept, const std::string& error) {
+    const std::string why = error.empty() ? "" : " (refining again stopped: " + error + ")";
+    std::fprintf(stderr, "%s: refinement gave up on some triangles and %s; the result %s kept%s\n", program, again,
+                 kept, why.c_str());
+}
+
 int run(tools::Tool& tool) {
     CLI::App& app = tool.app;
     app.description("Refines a valid geodesic triangulation (.gtri): splits the longest edge at its geodesic midpoint\n"
@@ -133,6 +141,9 @@ int run(tools::Tool& tool) {
         summary.add("without_moves_tried", r.without_moves_tried);
         summary.add("without_moves_kept", r.without_moves_kept);
         summary.add("without_moves_error", r.without_moves_error);
+        summary.add("finer_min_edge_tried", r.finer_min_edge_tried);
+        summary.add("finer_min_edge_kept", r.finer_min_edge_kept);
+        summary.add("finer_min_edge_error", r.finer_min_edge_error);
         summary.add("whole_checks", r.whole_checks);
         summary.add("longest_edge", r.longest_edge);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);
@@ -164,17 +175,15 @@ int run(tools::Tool& tool) {
             std::fprintf(stderr, "%s: %d corners below %g degrees at cone points that force them, %d where refinement "
                                  "gave up\n",
                          program, r.exempt_corners, options.min_angle_deg, r.small_corners_left);
-        if (r.second_attempt) {
-            const std::string why =
-                r.second_attempt_error.empty() ? "" : " (the second attempt stopped: " + r.second_attempt_error + ")";
-            std::fprintf(stderr, "%s: refinement gave up on some triangles and started again with nearly every vertex "
-                                 "of T that is not flat treated as curved; %s result kept%s\n",
-                         program, r.second_attempt_kept ? "the second" : "the first", why.c_str());
-        }
+        if (r.second_attempt)
+            report_again(program, "started again with nearly every vertex of T that is not flat treated as curved",
+                         r.second_attempt_kept ? "of the second attempt" : "of the first", r.second_attempt_error);
         if (r.without_moves_tried)
-            std::fprintf(stderr, "%s: refinement with vertex moves gave up on some triangles and refined again without "
-                                 "them; the result %s kept\n",
-                         program, r.without_moves_kept ? "without moves" : "with moves");
+            report_again(program, "refined again without vertex moves",
+                         r.without_moves_kept ? "without moves" : "with moves", r.without_moves_error);
+        if (r.finer_min_edge_tried)
+            report_again(program, "refined again with a shortest edge of a twentieth of T's mean edge",
+                         r.finer_min_edge_kept ? "with it" : "with a tenth", r.finer_min_edge_error);
         if (r.wide_corners_left > 0)
             std::fprintf(stderr, "%s: %d corners above 180 degrees left\n", program, r.wide_corners_left);
         if (r.whole_checks)

@@ -82,6 +82,18 @@ constexpr std::size_t k_max_search_faces = 2000;
 constexpr int k_min_faces_for_threads = 20000;
 // Below this many faces of T, the geodesics of the flips are not kept for flips evaluated again (Refiner::paths_).
 constexpr int k_min_faces_for_path_cache = 20000;
+// The shortest edge that refinement refines and makes, unless the caller gives one: this fraction of T's mean edge.
+constexpr double k_min_edge_fraction = 0.1;
+// Where refinement to a minimum angle gives up on some triangles without reaching its vertex cap, on a T of under
+// k_min_faces_for_threads faces, it starts again from the G given with this fraction instead (refine()).
+constexpr double k_finer_min_edge_fraction = 0.05;
+
+/// The mean length of T's edges.
+double mean_edge_length(const geodesic::Mesh& mesh) {
+    double sum = 0.0;
+    for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
+    return sum / mesh.num_halfedges();
+}
 
 std::array<HalfedgeHandle, 3> halfedges_of(const CoarseMesh& coarse, FaceHandle f) {
     const HalfedgeHandle h0 = coarse.halfedge_handle(f), h1 = coarse.next_halfedge_handle(h0);
@@ -218,9 +230,8 @@ public:
         : g_(g), options_(options), result_(result), propagation_(g.fine().mesh), pool_(g.fine().mesh),
           stop_if_cancelled_(std::move(stop_if_cancelled)), whole_checks_(whole_checks) {
         const geodesic::Mesh& mesh = g.fine().mesh;
-        double sum = 0.0;
-        for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
-        min_edge_ = options.min_edge_length > 0.0 ? options.min_edge_length : 0.1 * sum / mesh.num_halfedges();
+        min_edge_ = options.min_edge_length > 0.0 ? options.min_edge_length
+                                                   : k_min_edge_fraction * mean_edge_length(mesh);
         // Bisection stops by itself (every split halves an edge); only an explicit cap bounds it.
         budget_ = options.max_new_vertices > 0 ? options.max_new_vertices : std::numeric_limits<int>::max();
         min_angle_ = options.min_angle_deg * k_pi / 180.0;
@@ -1466,45 +1477,82 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     const int attempt_threads = options.min_angle_deg > 0.0 && g.fine().mesh.num_faces() < k_min_faces_for_threads
                                     ? detail::team_size(options.threads)
                                     : 1;
-    ValidationReport after;
-    {
-        Attempts attempts(given, given_result, options, false, options.move_vertices, attempt_threads);
-        after = refine_given(attempts, 0, g, result);
-        // Given up on a few triangles with vertex moves, not cascading into the cap: once more without them, and
-        // the better kept. The ways out that refinement has where it is stuck (a longer cap when nearly done,
-        // removing the vertices it added) were made for circumcentres alone, and moves can stand in their way: at
-        // 30 degrees, footbones and boxpart reach the angle only without moves. Where more are left, circumcentres
-        // alone left more still on every mesh measured (man, gears and skull_thing74168 at 25 degrees, femur_cgal
-        // at 30).
-        if (options.move_vertices && options.min_angle_deg > 0.0 && after.valid && result.small_corners_left > 0 &&
-            result.small_corners_left <= k_few_corners_left && !result.vertex_cap_reached) {
-            if (options.progress) options.progress("corners left with vertex moves: starting again without them");
-            GeodesicTriangulation other = given;
-            RefineResult other_result = given_result;
-            std::optional<ValidationReport> other_report;
-            try {
-                other_report = refine_given(attempts, 2, other, other_result);
-            } catch (const NumericalError& error) {
-                // It only tries to do better: where it meets numerical trouble, the result with moves stands.
-                result.without_moves_error = error.what();
+    // Refines the G given with `with` (options, or those with another shortest edge) into `target` and `counts`;
+    // returns validate() of the result.
+    auto refine_with = [&](const RefineOptions& with, GeodesicTriangulation& target, RefineResult& counts) {
+        ValidationReport after;
+        {
+            Attempts attempts(given, given_result, with, false, with.move_vertices, attempt_threads);
+            after = refine_given(attempts, 0, target, counts);
+            // Given up on a few triangles with vertex moves, not cascading into the cap: once more without them,
+            // and the better kept. The ways out that refinement has where it is stuck (a longer cap when nearly
+            // done, removing the vertices it added) were made for circumcentres alone, and moves can stand in their
+            // way: at 30 degrees, footbones and boxpart reach the angle only without moves. Where more are left,
+            // circumcentres alone left more still on every mesh measured (man, gears and skull_thing74168 at 25
+            // degrees, femur_cgal at 30).
+            if (with.move_vertices && with.min_angle_deg > 0.0 && after.valid && counts.small_corners_left > 0 &&
+                counts.small_corners_left <= k_few_corners_left && !counts.vertex_cap_reached) {
+                if (options.progress) options.progress("corners left with vertex moves: starting again without them");
+                GeodesicTriangulation other = given;
+                RefineResult other_result = given_result;
+                std::optional<ValidationReport> other_report;
+                try {
+                    other_report = refine_given(attempts, 2, other, other_result);
+                } catch (const NumericalError& error) {
+                    // It only tries to do better: where it meets numerical trouble, the result with moves stands.
+                    counts.without_moves_error = error.what();
+                }
+                counts.without_moves_tried = true;
+                if (other_report && other_report->valid &&
+                    better_result(other_result, other, counts, target, exempt_below)) {
+                    target = std::move(other);
+                    counts = other_result;
+                    after = *other_report;
+                    counts.without_moves_tried = counts.without_moves_kept = true;
+                }
             }
-            result.without_moves_tried = true;
-            if (other_report && other_report->valid && better_result(other_result, other, result, g, exempt_below)) {
-                g = std::move(other);
-                result = other_result;
-                after = *other_report;
-                result.without_moves_tried = result.without_moves_kept = true;
-            }
+        }  // the attempts not needed stop here
+        // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
+        // with bisections, a face split whose geodesics passed them left patches that were not disks. Where the
+        // result is invalid, refinement starts again from the G given, every step then also checked on all of G.
+        if (!after.valid) {
+            if (options.progress)
+                options.progress("the result was not valid: starting again, checking all of G each step");
+            Attempts attempts(given, given_result, with, true, false, 1);
+            after = refine_given(attempts, 0, target, counts);
+            counts.whole_checks = true;
         }
-    }  // the attempts not needed stop here
-    // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
-    // with bisections, a face split whose geodesics passed them left patches that were not disks. Where the
-    // result is invalid, refinement starts again from the G given, every step then also checked on all of G.
-    if (!after.valid) {
-        if (options.progress) options.progress("the result was not valid: starting again, checking all of G each step");
-        Attempts attempts(given, given_result, options, true, false, 1);
-        after = refine_given(attempts, 0, g, result);
-        result.whole_checks = true;
+        return after;
+    };
+    ValidationReport after = refine_with(options, g, result);
+    // Given up on some triangles without reaching the cap, with the default shortest edge: once more with a shorter
+    // one, and the better kept. Which triangles refinement gives up on follows its choices all along the way, so
+    // neither edge is better everywhere (at 30 degrees, with a twentieth alone, skull_thing74168 reaches the angle
+    // and femur_cgal and gears end at 28.4 and 27.1 degrees instead of 21.8 and 13.1, but man at 1.1 instead of
+    // 18.1). Not on a T of k_min_faces_for_threads faces or more, where the attempts cannot run side by side and
+    // each takes seconds: man at 25 degrees would take 6.0 -> 13.1 s for 10 -> 8 corners left.
+    if (options.min_edge_length == 0.0 && options.min_angle_deg > 0.0 && after.valid &&
+        result.small_corners_left > 0 && !result.vertex_cap_reached &&
+        g.fine().mesh.num_faces() < k_min_faces_for_threads) {
+        if (options.progress) options.progress("corners left: starting again with a shorter shortest edge");
+        RefineOptions finer = options;
+        finer.min_edge_length = k_finer_min_edge_fraction * mean_edge_length(g.fine().mesh);
+        GeodesicTriangulation other = given;
+        RefineResult other_result = given_result;
+        std::optional<ValidationReport> other_report;
+        try {
+            other_report = refine_with(finer, other, other_result);
+        } catch (const NumericalError& error) {
+            // It only tries to do better: where it meets numerical trouble, the first result stands.
+            result.finer_min_edge_error = error.what();
+        }
+        result.finer_min_edge_tried = true;
+        if (other_report && other_report->valid && better_result(other_result, other, result, g, exempt_below)) {
+            g = std::move(other);
+            result = other_result;
+            after = *other_report;
+            result.finer_min_edge_tried = result.finer_min_edge_kept = true;
+        }
     }
     result.valid_after = after.valid;
     if (!after.valid) result.remaining = after.violations;

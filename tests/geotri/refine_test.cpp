@@ -56,6 +56,14 @@ std::vector<Polyline> polylines_of(const GeodesicTriangulation& g) {
 
 double min_corner_deg(const GeodesicTriangulation& g) { return corner_angle_stats(g).min_deg; }
 
+/// The mean length of T's edges, of which refinement's default shortest edge is a tenth.
+double mean_fine_edge(const GeodesicTriangulation& g) {
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    double sum = 0.0;
+    for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
+    return sum / mesh.num_halfedges();
+}
+
 /// Whether every corner of G is at least `angle` degrees, compared in radians as refinement compares them (in
 /// degrees, a corner of exactly the angle may read one rounding below it).
 bool every_corner_at_least(const GeodesicTriangulation& g, double angle) {
@@ -199,6 +207,7 @@ TEST(Refine, attempts_ahead_of_time_give_what_attempts_one_by_one_give) {
         EXPECT_EQ(ahead.second_attempt_kept, sequential.second_attempt_kept) << c.name;
         EXPECT_EQ(ahead.without_moves_tried, sequential.without_moves_tried) << c.name;
         EXPECT_EQ(ahead.without_moves_kept, sequential.without_moves_kept) << c.name;
+        EXPECT_EQ(ahead.finer_min_edge_kept, sequential.finer_min_edge_kept) << c.name;
         EXPECT_EQ(ahead.moved_vertices, sequential.moved_vertices) << c.name;
         EXPECT_EQ(ahead.flips, sequential.flips) << c.name;
     }
@@ -478,9 +487,11 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     EXPECT_TRUE(r.second_attempt_kept);
 
     // At 30 degrees both attempts give up next to saddles of T: the first result, which leaves fewer corners, is
-    // kept, and refining again gives the same G.
+    // kept, and refining again gives the same G. The shortest edge given (the default's), refinement does not
+    // start again with a shorter one (where_refinement_gives_up_it_starts_again_with_a_shorter_shortest_edge).
     RefineOptions options = without_moves();
     options.min_angle_deg = 30.0;
+    options.min_edge_length = 0.1 * mean_fine_edge(flipped);
     GeodesicTriangulation at_30 = flipped, again = flipped;
     const RefineResult first_kept = refine(at_30, options);
     std::cout << "[ refine   ] triceratops at 30 degrees: " << first_kept.angles_after.min_deg << "°, "
@@ -509,6 +520,47 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     EXPECT_EQ(stopped.second_attempt_error, "trouble in the second attempt");
     EXPECT_EQ(stopped.small_corners_left, first_kept.small_corners_left);
     EXPECT_EQ(polylines_of(troubled), polylines_of(at_30));
+}
+
+// Which triangles refinement gives up on follows its choices all along the way, which the shortest edge that it
+// refines and makes steers. Where it gives up with the default one (a tenth of T's mean edge), it refines the G given
+// again with half of it and keeps the better result: femur_cgal at 30 degrees then ends with fewer corners left.
+TEST(Refine, where_refinement_gives_up_it_starts_again_with_a_shorter_shortest_edge) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    GeodesicTriangulation flipped = traced(test::shared_mesh("anatomy/femur_cgal.off").path, 320);
+    flip_to_delaunay(flipped);
+    RefineOptions options;
+    options.min_angle_deg = 30.0;
+    GeodesicTriangulation g = flipped, tenth = flipped, troubled = flipped;
+    const RefineResult r = refine(g, options);
+    RefineOptions given_tenth = options;
+    given_tenth.min_edge_length = 0.1 * mean_fine_edge(flipped);
+    const RefineResult with_tenth = refine(tenth, given_tenth);
+    std::cout << "[ refine   ] femur_cgal at 30 degrees: " << with_tenth.angles_after.min_deg << "°, "
+              << with_tenth.small_corners_left << " corners left with a tenth of the mean edge; "
+              << r.angles_after.min_deg << "°, " << r.small_corners_left << " left as refine() chose\n";
+    EXPECT_FALSE(with_tenth.finer_min_edge_tried);
+    ASSERT_GT(with_tenth.small_corners_left, 0);
+    EXPECT_TRUE(r.finer_min_edge_tried);
+    EXPECT_TRUE(r.finer_min_edge_kept);
+    EXPECT_LT(r.small_corners_left, with_tenth.small_corners_left);
+    EXPECT_TRUE(r.valid_after);
+    expect_valid_with_area(g);
+
+    // Numerical trouble there (thrown from the progress callback once it has begun) leaves the first result, and
+    // says why.
+    options.progress = [started = false](const std::string& where) mutable {
+        if (started) throw NumericalError("trouble with the shorter edge");
+        started = where.find("shorter shortest edge") != std::string::npos;
+    };
+    const RefineResult stopped = refine(troubled, options);
+    EXPECT_TRUE(stopped.finer_min_edge_tried);
+    EXPECT_FALSE(stopped.finer_min_edge_kept);
+    EXPECT_EQ(stopped.finer_min_edge_error, "trouble with the shorter edge");
+    EXPECT_EQ(stopped.small_corners_left, with_tenth.small_corners_left);
+    EXPECT_EQ(polylines_of(troubled), polylines_of(tenth));
 }
 
 // At 30 degrees on boxpart, the last triangle below the angle can only be mended by taking out a vertex that

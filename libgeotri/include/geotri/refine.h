@@ -27,10 +27,11 @@ struct RefineOptions {
     /// Where refinement gives up on some triangles without reaching the vertex cap, it starts again from the G
     /// given with nearly every vertex of T that is not flat treated as curved, and returns the better result.
     double min_angle_deg = 0.0;
-    /// Do not refine a triangle whose shortest edge is shorter than this (0: a tenth of the mean edge length of T),
-    /// nor make a new edge shorter than it, so that refinement does not chase a needle of T with ever smaller
-    /// triangles. Near an edge of the G given that is shorter (two input vertices close together: a small feature
-    /// of T), the bound is that edge's length plus the distance to it, so that its triangles are mended too.
+    /// Do not refine a triangle whose shortest edge is shorter than this (0: a tenth of the mean edge length of T,
+    /// and a twentieth too where that gives up: RefineResult::finer_min_edge_tried), nor make a new edge shorter than
+    /// it, so that refinement does not chase a needle of T with ever smaller triangles. Near an edge of the G given
+    /// that is shorter (two input vertices close together: a small feature of T), the bound is that edge's length
+    /// plus the distance to it, so that its triangles are mended too.
     double min_edge_length = 0.0;
     bool flip = true;            ///< flip towards geodesic Delaunay (angle criterion) around every new vertex
     /// While raising the minimum angle, a vertex of the G given (not one that refinement added) at an end of the
@@ -100,6 +101,13 @@ struct RefineResult {
     std::string without_moves_error;
     /// Why the second attempt stopped, where it threw NumericalError: the first result is returned then.
     std::string second_attempt_error;
+    /// With the default min_edge_length, refinement gave up on some triangles below the minimum angle without
+    /// reaching the vertex cap, on a T of under 20000 faces, and refined the G given again (all of the above) with
+    /// a shortest edge of a twentieth of T's mean edge; where that left fewer corners below the angle (or as many
+    /// and a larger smallest corner that is not exempt), its result is the one returned, with its counts.
+    bool finer_min_edge_tried = false, finer_min_edge_kept = false;
+    /// Why refining again with the shorter edge stopped, where it threw NumericalError: the first result stands.
+    std::string finer_min_edge_error;
     /// The local checks let through a step that left G invalid: refinement started again from the G given, with
     /// every step checked on all of G (validate(), the overlay included), and this is that result. Slower.
     bool whole_checks = false;
