@@ -1477,6 +1477,29 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     const int attempt_threads = options.min_angle_deg > 0.0 && g.fine().mesh.num_faces() < k_min_faces_for_threads
                                     ? detail::team_size(options.threads)
                                     : 1;
+    // Refines the G given once more with `again` (called with a copy of the G given and of its counts, returning
+    // validate() of its result), which only tries to do better: where that meets numerical trouble, the result in
+    // `target` stands and `error` says why; where it ends valid and better_result(), it replaces target, counts and
+    // after. Sets the `tried` and `kept` flags of the counts that stand.
+    auto keep_if_better = [&](auto again, GeodesicTriangulation& target, RefineResult& counts, ValidationReport& after,
+                              bool RefineResult::*tried, bool RefineResult::*kept, std::string RefineResult::*error) {
+        GeodesicTriangulation other = given;
+        RefineResult other_result = given_result;
+        std::optional<ValidationReport> other_report;
+        try {
+            other_report = again(other, other_result);
+        } catch (const NumericalError& trouble) {
+            counts.*error = trouble.what();
+        }
+        counts.*tried = true;
+        if (other_report && other_report->valid &&
+            better_result(other_result, other, counts, target, exempt_below)) {
+            target = std::move(other);
+            counts = other_result;
+            after = *other_report;
+            counts.*tried = counts.*kept = true;
+        }
+    };
     // Refines the G given with `with` (options, or those with another shortest edge) into `target` and `counts`;
     // returns validate() of the result.
     auto refine_with = [&](const RefineOptions& with, GeodesicTriangulation& target, RefineResult& counts) {
@@ -1493,23 +1516,12 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
             if (with.move_vertices && with.min_angle_deg > 0.0 && after.valid && counts.small_corners_left > 0 &&
                 counts.small_corners_left <= k_few_corners_left && !counts.vertex_cap_reached) {
                 if (options.progress) options.progress("corners left with vertex moves: starting again without them");
-                GeodesicTriangulation other = given;
-                RefineResult other_result = given_result;
-                std::optional<ValidationReport> other_report;
-                try {
-                    other_report = refine_given(attempts, 2, other, other_result);
-                } catch (const NumericalError& error) {
-                    // It only tries to do better: where it meets numerical trouble, the result with moves stands.
-                    counts.without_moves_error = error.what();
-                }
-                counts.without_moves_tried = true;
-                if (other_report && other_report->valid &&
-                    better_result(other_result, other, counts, target, exempt_below)) {
-                    target = std::move(other);
-                    counts = other_result;
-                    after = *other_report;
-                    counts.without_moves_tried = counts.without_moves_kept = true;
-                }
+                keep_if_better(
+                    [&](GeodesicTriangulation& other, RefineResult& other_counts) {
+                        return refine_given(attempts, 2, other, other_counts);
+                    },
+                    target, counts, after, &RefineResult::without_moves_tried, &RefineResult::without_moves_kept,
+                    &RefineResult::without_moves_error);
             }
         }  // the attempts not needed stop here
         // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
@@ -1537,22 +1549,10 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         if (options.progress) options.progress("corners left: starting again with a shorter shortest edge");
         RefineOptions finer = options;
         finer.min_edge_length = k_finer_min_edge_fraction * mean_edge_length(g.fine().mesh);
-        GeodesicTriangulation other = given;
-        RefineResult other_result = given_result;
-        std::optional<ValidationReport> other_report;
-        try {
-            other_report = refine_with(finer, other, other_result);
-        } catch (const NumericalError& error) {
-            // It only tries to do better: where it meets numerical trouble, the first result stands.
-            result.finer_min_edge_error = error.what();
-        }
-        result.finer_min_edge_tried = true;
-        if (other_report && other_report->valid && better_result(other_result, other, result, g, exempt_below)) {
-            g = std::move(other);
-            result = other_result;
-            after = *other_report;
-            result.finer_min_edge_tried = result.finer_min_edge_kept = true;
-        }
+        keep_if_better([&](GeodesicTriangulation& other,
+                           RefineResult& other_counts) { return refine_with(finer, other, other_counts); },
+                       g, result, after, &RefineResult::finer_min_edge_tried, &RefineResult::finer_min_edge_kept,
+                       &RefineResult::finer_min_edge_error);
     }
     result.valid_after = after.valid;
     if (!after.valid) result.remaining = after.violations;

@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -62,6 +63,16 @@ double mean_fine_edge(const GeodesicTriangulation& g) {
     double sum = 0.0;
     for (int h = 0; h < mesh.num_halfedges(); ++h) sum += mesh.length(h);
     return sum / mesh.num_halfedges();
+}
+
+/// A progress callback that throws NumericalError(`message`) at its first call after a line that holds `marker`: a
+/// refinement that refine() runs again, meeting numerical trouble once it has begun.
+std::function<void(const std::string&)> trouble_after(std::string marker, std::string message) {
+    return [marker = std::move(marker), message = std::move(message), started = false](
+               const std::string& where) mutable {
+        if (started) throw NumericalError(message);
+        started = where.find(marker) != std::string::npos;
+    };
 }
 
 /// Whether every corner of G is at least `angle` degrees, compared in radians as refinement compares them (in
@@ -510,10 +521,7 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     // refine() waits for it: it may have ended by then).
     GeodesicTriangulation troubled = flipped;
     options.threads = 1;
-    options.progress = [started = false](const std::string& where) mutable {
-        if (started) throw NumericalError("trouble in the second attempt");
-        started = where.find("starting again") != std::string::npos;
-    };
+    options.progress = trouble_after("starting again", "trouble in the second attempt");
     const RefineResult stopped = refine(troubled, options);
     EXPECT_TRUE(stopped.second_attempt);
     EXPECT_FALSE(stopped.second_attempt_kept);
@@ -551,10 +559,7 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_with_a_shorter_shortest_e
 
     // Numerical trouble there (thrown from the progress callback once it has begun) leaves the first result, and
     // says why.
-    options.progress = [started = false](const std::string& where) mutable {
-        if (started) throw NumericalError("trouble with the shorter edge");
-        started = where.find("shorter shortest edge") != std::string::npos;
-    };
+    options.progress = trouble_after("shorter shortest edge", "trouble with the shorter edge");
     const RefineResult stopped = refine(troubled, options);
     EXPECT_TRUE(stopped.finer_min_edge_tried);
     EXPECT_FALSE(stopped.finer_min_edge_kept);
