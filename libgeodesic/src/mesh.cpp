@@ -59,8 +59,11 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
             throw InvalidInput("face " + std::to_string(f) + " repeats a vertex");
     }
 
-    // Twins: sort the halfedges by their undirected edge, then pair them up.
     const int nh = 3 * nf;
+    halfedges_.resize(nh);
+    for (int h = 0; h < nh; ++h) halfedges_[h].tail = triangles_[h / 3][h % 3];
+
+    // Twins: sort the halfedges by their undirected edge, then pair them up.
     std::vector<std::uint64_t> key(nh);
     for (int h = 0; h < nh; ++h) {
         auto a = static_cast<std::uint64_t>(tail(h));
@@ -70,7 +73,6 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
     std::vector<int> order(nh);
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](int x, int y) { return key[x] < key[y] || (key[x] == key[y] && x < y); });
-    twin_.assign(nh, -1);
     for (int i = 0; i < nh;) {
         int j = i + 1;
         while (j < nh && key[order[j]] == key[order[i]]) ++j;
@@ -83,8 +85,8 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
             if (tail(h) == tail(g))
                 throw TopologyError("faces " + std::to_string(face_of(h)) + " and " + std::to_string(face_of(g)) +
                                     " are inconsistently oriented at edge " + edge_name(tail(h), head(h)));
-            twin_[h] = g;
-            twin_[g] = h;
+            halfedges_[h].twin = g;
+            halfedges_[g].twin = h;
         } else {
             ++num_boundary_halfedges_;
         }
@@ -106,7 +108,7 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
     boundary_vertex_.assign(nv, 0);
     for (int h = 0; h < nh; ++h) {
         const int v = tail(h);
-        if (twin_[h] < 0) {
+        if (twin(h) < 0) {
             outgoing_[v] = h;
             boundary_vertex_[v] = 1;
             boundary_vertex_[head(h)] = 1;
@@ -115,20 +117,18 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
         }
     }
 
-    length_.resize(nh);
     corner_angle_.resize(nh);
-    apex_.resize(nh);
     cone_angle_.assign(nv, 0.0);
     for (int h = 0; h < nh; ++h) {
         const Eigen::Vector3d& p = positions_[tail(h)];
         const Eigen::Vector3d along = positions_[head(h)] - p;
         const Eigen::Vector3d back = positions_[tail(prev(h))] - p;
-        length_[h] = along.norm();
+        halfedges_[h].length = along.norm();
         corner_angle_[h] = angle_between(along, back);
         // Straight from the 3D vectors rather than the law of cosines, which loses the height of needles.
-        const double l = length_[h];
-        apex_[h] = l > 0.0 ? Eigen::Vector2d(back.dot(along) / l, along.cross(back).norm() / l)
-                           : Eigen::Vector2d(0.0, back.norm());
+        const double l = length(h);
+        halfedges_[h].apex = l > 0.0 ? Eigen::Vector2d(back.dot(along) / l, along.cross(back).norm() / l)
+                                       : Eigen::Vector2d(0.0, back.norm());
         cone_angle_[tail(h)] += corner_angle_[h];
     }
     for (int f = 0; f < num_faces(); ++f) total_area_ += face_area(f);
@@ -145,7 +145,7 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
             polar_angle_[h] = angle;
             angle += corner_angle_[h];
             ++count;
-            h = twin_[prev(h)];
+            h = twin(prev(h));
             if (h == first) break;
         }
         if (count == outgoing_offset_[v + 1] - outgoing_offset_[v]) {

@@ -31,10 +31,10 @@ public:
     static int face_of(int h) { return h / 3; }
     static int next(int h) { return h - h % 3 + (h % 3 + 1) % 3; }
     static int prev(int h) { return h - h % 3 + (h % 3 + 2) % 3; }
-    int tail(int h) const { return triangles_[h / 3][h % 3]; }
-    int head(int h) const { return triangles_[h / 3][(h % 3 + 1) % 3]; }
+    int tail(int h) const { return halfedges_[h].tail; }
+    int head(int h) const { return halfedges_[next(h)].tail; }
     /// The opposite halfedge in the neighbouring face, or -1 on a boundary.
-    int twin(int h) const { return twin_[h]; }
+    int twin(int h) const { return halfedges_[h].twin; }
     /// One halfedge leaving v (the first of its fan when v is on a boundary), or -1 for an isolated vertex.
     int outgoing(int v) const { return outgoing_[v]; }
     /// Every halfedge leaving v, in no particular order (also at a non-manifold vertex).
@@ -50,12 +50,12 @@ public:
     /// The halfedge from `from` to `to`, or -1 if there is none.
     int find_halfedge(int from, int to) const;
 
-    double length(int h) const { return length_[h]; }
+    double length(int h) const { return halfedges_[h].length; }
     /// Corner angle of face(h) at tail(h).
     double corner_angle(int h) const { return corner_angle_[h]; }
     /// The vertex opposite h, laid out in h's plane frame: tail(h) at (0,0), head(h) at (length(h),0), the face
     /// on the side y >= 0 (y == 0 for a zero-area face). Any face can be unfolded from these.
-    const Eigen::Vector2d& apex(int h) const { return apex_[h]; }
+    const Eigen::Vector2d& apex(int h) const { return halfedges_[h].apex; }
     /// Sum of the corner angles around v: > 2π at a saddle, < 2π at a convex vertex.
     double cone_angle(int v) const { return cone_angle_[v]; }
     bool is_boundary_vertex(int v) const { return boundary_vertex_[v] != 0; }
@@ -82,14 +82,20 @@ public:
 private:
     std::vector<Eigen::Vector3d> positions_;
     std::vector<std::array<int, 3>> triangles_;
-    std::vector<int> twin_;
+    /// What crossing a face reads of its halfedges, side by side: the three of a face fill two cache lines, where
+    /// separate arrays of lengths, apexes, twins and triangles took four or five.
+    struct alignas(32) HalfedgeRecord {
+        Eigen::Vector2d apex;
+        double length = 0.0;
+        int twin = -1;
+        int tail = -1;
+    };
+    std::vector<HalfedgeRecord> halfedges_;
     std::vector<int> outgoing_;
     std::vector<int> outgoing_offset_;  // CSR: the halfedges leaving v are outgoing_list_[offset[v] .. offset[v+1])
     std::vector<int> outgoing_list_;
     std::vector<int> outgoing_head_;    // head of outgoing_list_[i], side by side for find_halfedge()
-    std::vector<double> length_;
     std::vector<double> corner_angle_;
-    std::vector<Eigen::Vector2d> apex_;
     std::vector<double> cone_angle_;
     std::vector<unsigned char> boundary_vertex_;
     std::vector<unsigned char> manifold_vertex_;
