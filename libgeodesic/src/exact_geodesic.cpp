@@ -54,7 +54,7 @@ constexpr int k_compare_lookahead = 4;
 constexpr int k_list_reach = std::max(k_merge_lookahead, k_compare_lookahead);
 // Without keep_windows, the windows that no longer count are freed once there are at least this many windows.
 constexpr std::size_t k_min_windows_to_free = 1 << 16;
-// first_window_ of a halfedge whose edge the wavefront has passed (close_passed_edges): no window comes there again.
+// first_window of a halfedge whose edge the wavefront has passed (close_passed_edges): no window comes there again.
 constexpr int k_closed = -2;
 // How far beyond the longest path through an end vertex, relative to the key, an edge is closed: far more than the
 // rounding by which later keys can fall below the last (wavefront_has_passed), and far less than the windows
@@ -161,9 +161,15 @@ private:
     // source index), so that a path is found again leg by leg, each leg by a propagation from it alone.
     std::vector<int> origin_;
     std::vector<int> touched_vertices_;
-    std::vector<int> first_window_;  // per halfedge
-    std::vector<int> first_pending_;  // per halfedge: its windows that have not crossed its face yet
-    std::vector<double> queued_halfedge_key_;  // per halfedge: the key of its latest queue entry
+    // Per halfedge, side by side: a window that is added reads and writes all of it, for a halfedge that the
+    // wavefront reaches far from where it was.
+    struct HalfedgeState {
+        double queued_key = k_infinity;  // the key of its queue entry; infinity when not queued
+        int first_window = -1;           // its list of windows, newest first
+        int first_pending = -1;          // its windows that have not crossed its face yet
+        unsigned char watched = 0;       // a stop point lies in its face
+    };
+    std::vector<HalfedgeState> halfedge_state_;
     std::vector<int> touched_halfedges_;
     std::vector<Window> windows_;
     std::vector<int> merged_pieces_;           // for merged windows: a count, then the ids of the pieces
@@ -187,11 +193,9 @@ private:
     std::vector<SurfacePoint> sources_;
     std::vector<StopPoint> stops_;
     std::vector<std::pair<int, int>> watches_;  // (halfedge, stop index), sorted
-    std::vector<unsigned char> watched_;        // per halfedge
     double max_distance_ = k_infinity;
     std::vector<Eigen::Vector3d> goals_;  // goal-directed: the stop points' positions; empty otherwise
     std::vector<unsigned char> goal_settled_;  // per goal: its stop point is settled, so it no longer draws the search
-    std::vector<double> queued_key_;  // per vertex: the key of its latest queue entry (keys change with the goals)
 };
 
 ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
@@ -204,14 +208,11 @@ ExactGeodesic::Impl::Impl(const Mesh& mesh) : mesh_(mesh) {
         pseudo_source_[v] = emits;
     }
     distance_.assign(nv, k_infinity);
-    queued_key_.assign(nv, k_infinity);
+    queue_.resize(nv, mesh.num_halfedges());
     predecessor_.assign(nv, Predecessor{});
     incoming_angle_.assign(nv, std::numeric_limits<double>::quiet_NaN());
     origin_.assign(nv, -1);
-    first_window_.assign(mesh.num_halfedges(), -1);
-    first_pending_.assign(mesh.num_halfedges(), -1);
-    queued_halfedge_key_.assign(mesh.num_halfedges(), k_infinity);
-    watched_.assign(mesh.num_halfedges(), 0);
+    halfedge_state_.assign(mesh.num_halfedges(), HalfedgeState{});
 }
 
 void ExactGeodesic::Impl::reset() {
@@ -220,11 +221,11 @@ void ExactGeodesic::Impl::reset() {
         predecessor_[v] = Predecessor{};
     }
     for (int h : touched_halfedges_) {
-        first_window_[h] = -1;
-        first_pending_[h] = -1;
-        queued_halfedge_key_[h] = k_infinity;
+        halfedge_state_[h].first_window = -1;
+        halfedge_state_[h].first_pending = -1;
+        halfedge_state_[h].queued_key = k_infinity;
     }
-    for (const auto& watch : watches_) watched_[watch.first] = 0;
+    for (const auto& watch : watches_) halfedge_state_[watch.first].watched = 0;
     touched_vertices_.clear();
     touched_halfedges_.clear();
     open_halfedges_.clear();
@@ -244,7 +245,7 @@ void ExactGeodesic::Impl::reset() {
 }
 
 void ExactGeodesic::Impl::push_queue(double key, int item) {
-    queue_.push(key, item);
+    queue_.set(key, item);
     ++stats_.queue_pushes;
     stats_.peak_queue_size = std::max(stats_.peak_queue_size, queue_.size());
 }
@@ -269,8 +270,7 @@ void ExactGeodesic::Impl::relax_vertex(int v, double distance, Predecessor prede
 }
 
 void ExactGeodesic::Impl::push_vertex(int v) {
-    queued_key_[v] = vertex_key(v);
-    push_queue(queued_key_[v], -1 - v);
+    push_queue(vertex_key(v), -1 - v);
 }
 
 // Only the goals whose stop points are not settled count: the search then heads for those (a face split's three
@@ -279,10 +279,11 @@ void ExactGeodesic::Impl::push_vertex(int v) {
 // point not yet settled, which is all that the stop test needs.
 double ExactGeodesic::Impl::estimate_left(const Eigen::Vector3d& x) const {
     if (goals_.empty()) return 0.0;
+    // The square root of the least square: the same as the least square root, for one square root.
     double nearest = k_infinity;
     for (std::size_t i = 0; i < goals_.size(); ++i)
-        if (!goal_settled_[i]) nearest = std::min(nearest, (goals_[i] - x).norm());
-    return nearest;
+        if (!goal_settled_[i]) nearest = std::min(nearest, (goals_[i] - x).squaredNorm());
+    return std::sqrt(nearest);
 }
 
 double ExactGeodesic::Impl::estimate_left(const Window& w) const {
@@ -298,9 +299,9 @@ double ExactGeodesic::Impl::estimate_left(const Window& w) const {
         if (goal_settled_[i]) continue;
         const Eigen::Vector3d& goal = goals_[i];
         const double x = std::clamp((goal - tail).dot(along), w.b0, w.b1);
-        nearest = std::min(nearest, (goal - (tail + x * along)).norm());
+        nearest = std::min(nearest, (goal - (tail + x * along)).squaredNorm());
     }
-    return nearest;
+    return std::sqrt(nearest);
 }
 
 double ExactGeodesic::Impl::vertex_key(int v) const { return distance_[v] + estimate_left(mesh_.position(v)); }
@@ -406,7 +407,8 @@ bool ExactGeodesic::Impl::trim_by_other_windows(Window& w, int self) const {
         const int list = side == 0 ? h : mesh_.twin(h);
         if (list < 0) continue;
         int looked = 0;
-        for (int id = first_window_[list]; id >= 0 && looked < k_compare_lookahead; id = windows_[id].next_on_edge) {
+        for (int id = halfedge_state_[list].first_window; id >= 0 && looked < k_compare_lookahead;
+             id = windows_[id].next_on_edge) {
             ++looked;  // w itself counts: no window beyond the reach is read
             if (id == self) continue;
             const Window& other = windows_[id];
@@ -426,7 +428,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     b0 = std::max(b0, 0.0);
     b1 = std::min(b1, length);
     if (!(b0 < b1)) return;
-    Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, first_window_[h]};
+    Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, halfedge_state_[h].first_window};
     if (max_distance_ < k_infinity && w.lower_bound() > max_distance_) return;  // a square root saved otherwise
     if (w.next_on_edge == k_closed) {  // nowhere shorter than a path through an end vertex (close_passed_edges)
         ++stats_.windows_not_made;
@@ -441,16 +443,16 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
         touched_halfedges_.push_back(h);
         if (!keep_windows_) open_halfedges_.push_back(h);
     }
-    first_window_[h] = id;
-    w.next_pending = first_pending_[h];
-    first_pending_[h] = id;
+    halfedge_state_[h].first_window = id;
+    w.next_pending = halfedge_state_[h].first_pending;
+    halfedge_state_[h].first_pending = id;
     w.state = k_pending;
     windows_.push_back(w);
     ++stats_.windows_created;
     const double tolerance = k_cover * length;
     if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
     if (b1 >= length - tolerance) relax_vertex(mesh_.head(h), w.value_at(length), {Via::window, id});
-    if (watched_[h]) {
+    if (halfedge_state_[h].watched) {
         auto range = std::equal_range(watches_.begin(), watches_.end(), std::make_pair(h, -1),
                                       [](const auto& a, const auto& b) { return a.first < b.first; });
         for (auto it = range.first; it != range.second; ++it) {
@@ -461,10 +463,10 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     // The estimate adds to the bound: where the bound alone is no lower than the halfedge's queued key, so is the
     // key, and the estimate (a loop over the goals) is not needed.
     const double bound = w.lower_bound();
-    if (!(bound < queued_halfedge_key_[h])) return;
+    if (!(bound < halfedge_state_[h].queued_key)) return;
     const double key = bound + estimate_left(w);
-    if (key < queued_halfedge_key_[h]) {
-        queued_halfedge_key_[h] = key;
+    if (key < halfedge_state_[h].queued_key) {
+        halfedge_state_[h].queued_key = key;
         push_queue(key, h);
     }
 }
@@ -474,7 +476,7 @@ void ExactGeodesic::Impl::retire_beyond_reach(int h) {
     // again. Lists only grow at the front, so those beyond the first window retired before are retired already;
     // each window is marked once, and the walk reads what trimming has just read (a walk at every new window
     // read three windows that had left the cache: 6% of the time).
-    int id = first_window_[h];
+    int id = halfedge_state_[h].first_window;
     for (int i = 0; i < k_list_reach && id >= 0; ++i) id = windows_[id].next_on_edge;
     for (; id >= 0 && !windows_[id].retired; id = windows_[id].next_on_edge) {
         windows_[id].retired = true;
@@ -505,8 +507,8 @@ void ExactGeodesic::Impl::close_edge(int h) {
     // pass reads it all, in order, which costs less than walking the edge's list to mark them (a cache miss each).
     for (int side : {h, mesh_.twin(h)}) {
         if (side < 0) continue;
-        if (first_window_[side] == -1) touched_halfedges_.push_back(side);  // for reset()
-        first_window_[side] = k_closed;
+        if (halfedge_state_[side].first_window == -1) touched_halfedges_.push_back(side);  // for reset()
+        halfedge_state_[side].first_window = k_closed;
     }
     lowest_retired_ = 0;
 }
@@ -515,7 +517,7 @@ void ExactGeodesic::Impl::close_passed_edges() {
     // Without this, every edge behind the wavefront kept its k_list_reach newest windows to the end: storage that
     // grew with the area swept (2.5 windows a halfedge, 60 MB on a sphere of 100k faces), not with the wavefront.
     for (int h : open_halfedges_)
-        if (first_window_[h] != k_closed && wavefront_has_passed(h)) close_edge(h);
+        if (halfedge_state_[h].first_window != k_closed && wavefront_has_passed(h)) close_edge(h);
 }
 
 void ExactGeodesic::Impl::free_retired_windows() {
@@ -531,7 +533,7 @@ void ExactGeodesic::Impl::free_retired_windows() {
     int kept = start;
     for (int id = start; id < size; ++id) {
         const Window& w = windows_[id];
-        const bool freed = w.retired || first_window_[w.halfedge] == k_closed;
+        const bool freed = w.retired || halfedge_state_[w.halfedge].first_window == k_closed;
         if (freed && w.state != k_pending) continue;
         if (freed) lowest_retired_ = std::min(lowest_retired_, kept);  // to be freed once it has crossed
         moved_to_[id - start] = kept;
@@ -547,12 +549,15 @@ void ExactGeodesic::Impl::free_retired_windows() {
             windows_[id].next_pending = moved(windows_[id].next_pending);
         }
         for (int h : open_halfedges_) {
-            if (first_window_[h] >= 0) first_window_[h] = moved(first_window_[h]);
-            first_pending_[h] = moved(first_pending_[h]);
+            HalfedgeState& state = halfedge_state_[h];
+            if (state.first_window >= 0) state.first_window = moved(state.first_window);
+            state.first_pending = moved(state.first_pending);
         }
     }
     // A closed edge's halfedge needs renumbering only while windows of it are still to cross.
-    auto done = [this](int h) { return first_window_[h] == k_closed && first_pending_[h] < 0; };
+    auto done = [this](int h) {
+        return halfedge_state_[h].first_window == k_closed && halfedge_state_[h].first_pending < 0;
+    };
     open_halfedges_.erase(std::remove_if(open_halfedges_.begin(), open_halfedges_.end(), done), open_halfedges_.end());
     // Free again when at least half as many windows have come as are left now, so that the work of freeing stays
     // proportional to the windows made; the storage grows by half when that does not fit, and not at every pass,
@@ -576,7 +581,8 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     // Fragments of one family arrive close together in time, so they sit near the front of the edge's list;
     // a bounded look keeps the cost constant on edges that many families cross.
     int looked = 0;
-    for (int s = first_window_[w.halfedge]; s >= 0 && looked < k_merge_lookahead; s = windows_[s].next_on_edge) {
+    for (int s = halfedge_state_[w.halfedge].first_window; s >= 0 && looked < k_merge_lookahead;
+         s = windows_[s].next_on_edge) {
         ++looked;
         if (windows_[s].state != k_pending || s == id) continue;
         const Window& other = windows_[s];
@@ -597,7 +603,7 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     Window m = w;
     m.b0 = b0;
     m.b1 = b1;
-    m.next_on_edge = first_window_[w.halfedge];
+    m.next_on_edge = halfedge_state_[w.halfedge].first_window;
     m.state = k_propagated;
     m.retired = false;  // it is the newest of its edge, whatever the piece it was copied from
     if (keep_windows_) {  // the pieces, for tracing paths back through them
@@ -605,7 +611,7 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
         merged_pieces_.push_back(static_cast<int>(pieces.size()));
         merged_pieces_.insert(merged_pieces_.end(), pieces.begin(), pieces.end());
     }
-    first_window_[w.halfedge] = merged;
+    halfedge_state_[w.halfedge].first_window = merged;
     windows_.push_back(m);
     stats_.windows_merged += pieces.size() - 1;
     return merged;
@@ -880,7 +886,7 @@ ExactGeodesic::Impl::Best ExactGeodesic::Impl::best_way_to(const SurfacePoint& p
             const double through_vertex = distance_[v] + (mesh_.position(v) - position).norm();
             if (through_vertex < best.distance) best = Best{through_vertex, Via::vertex, v, Vec2::Zero()};
             const Vec2 q = layout(h, p);
-            for (int id = first_window_[h]; id >= 0; id = windows_[id].next_on_edge) {
+            for (int id = halfedge_state_[h].first_window; id >= 0; id = windows_[id].next_on_edge) {
                 const double d = window_value_at(windows_[id], q);
                 if (d < best.distance) best = Best{d, Via::window, id, q};
             }
@@ -903,7 +909,7 @@ void ExactGeodesic::Impl::watch_stop_point(int index) {
     for (int f : faces_around(p)) {
         for (int i = 0; i < 3; ++i) {
             watches_.emplace_back(3 * f + i, index);
-            watched_[3 * f + i] = 1;
+            halfedge_state_[3 * f + i].watched = 1;
             const int v = mesh_.triangle(f)[i];
             stop.corners.emplace_back(v, (mesh_.position(v) - position).norm());
         }
@@ -979,8 +985,8 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
         ++stats_.queue_pops;
         // The windows of the next halfedge to pop have waited since they were made, so they are out of cache:
         // fetch the first while this item is processed.
-        if (!queue_.empty() && queue_.top_item() >= 0 && first_pending_[queue_.top_item()] >= 0)
-            prefetch(&windows_[first_pending_[queue_.top_item()]]);
+        if (!queue_.empty() && queue_.top_item() >= 0 && halfedge_state_[queue_.top_item()].first_pending >= 0)
+            prefetch(&windows_[halfedge_state_[queue_.top_item()].first_pending]);
         if (goals_.empty() && key > max_distance_) {  // a goal-directed key bounds more than the distance
             stats_.stopped_early = true;
             break;
@@ -996,10 +1002,9 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             // stop tests above stay exact; and the windows of one face and of the edges around it are processed
             // while they are in cache, with one queue entry for several windows.
             const int h = item;
-            if (key != queued_halfedge_key_[h]) continue;  // its windows crossed with an earlier entry
-            queued_halfedge_key_[h] = k_infinity;
-            int id = first_pending_[h];
-            first_pending_[h] = -1;
+            halfedge_state_[h].queued_key = k_infinity;
+            int id = halfedge_state_[h].first_pending;
+            halfedge_state_[h].first_pending = -1;
             while (id >= 0) {
                 const int next = windows_[id].next_pending;
                 propagate_window(id);
@@ -1008,7 +1013,6 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             if (!keep_windows_) retire_beyond_reach(h);
         } else {
             const int v = -1 - item;
-            if (key != queued_key_[v]) continue;  // superseded by a shorter distance
             if (distance_[v] == 0.0) {
                 if (std::find(emitted_at_zero.begin(), emitted_at_zero.end(), v) != emitted_at_zero.end()) continue;
                 emitted_at_zero.push_back(v);
