@@ -50,7 +50,8 @@ struct PropagationStats {
                                          ///< stops first). How many depends on when the passes that free windows
                                          ///< run, which depends on the storage that earlier propagations left
     std::size_t vertex_emissions = 0;    ///< saddle, boundary or source vertices that emitted windows
-    std::size_t queue_pushes = 0;        ///< queue entries: halfedges whose windows cross a face, and vertices
+    std::size_t queue_pushes = 0;        ///< keys set in the queue (new entries or entries moved): halfedges
+                                         ///< whose windows cross a face, and vertices
     std::size_t queue_pops = 0;
     std::size_t peak_queue_size = 0;
     std::size_t window_bytes = 0;        ///< memory held by the windows' storage at the end (its largest during
