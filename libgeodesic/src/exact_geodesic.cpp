@@ -985,9 +985,6 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
         }
     }
 
-    // A vertex source may be queued twice at distance 0. Few vertices are at distance 0 (the sources, and vertices
-    // at their positions), so a list is cheaper than a flag per vertex of the mesh.
-    std::vector<int> emitted_at_zero;
     while (!queue_.empty()) {
         if (!keep_windows_ && windows_.size() >= windows_to_free_at_) free_retired_windows();
         const auto [key, item] = queue_.pop();
@@ -1030,12 +1027,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             }
             if (!keep_windows_) retire_beyond_reach(h);
         } else {
-            const int v = -1 - item;
-            if (distance_[v] == 0.0) {
-                if (std::find(emitted_at_zero.begin(), emitted_at_zero.end(), v) != emitted_at_zero.end()) continue;
-                emitted_at_zero.push_back(v);
-            }
-            emit_from_vertex(v);
+            emit_from_vertex(-1 - item);
         }
     }
     if (!stats_.stopped_early && !stops_.empty()) all_stops_settled(k_infinity);
