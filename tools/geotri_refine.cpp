@@ -144,6 +144,9 @@ int run(tools::Tool& tool) {
         summary.add("finer_min_edge_tried", r.finer_min_edge_tried);
         summary.add("finer_min_edge_kept", r.finer_min_edge_kept);
         summary.add("finer_min_edge_error", r.finer_min_edge_error);
+        summary.add("finer_curved_tried", r.finer_curved_tried);
+        summary.add("finer_curved_kept", r.finer_curved_kept);
+        summary.add("finer_curved_error", r.finer_curved_error);
         summary.add("whole_checks", r.whole_checks);
         summary.add("longest_edge", r.longest_edge);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);
@@ -184,6 +187,9 @@ int run(tools::Tool& tool) {
         if (r.finer_min_edge_tried)
             report_again(program, "refined again with a shortest edge of a twentieth of T's mean edge",
                          r.finer_min_edge_kept ? "with it" : "with a tenth", r.finer_min_edge_error);
+        if (r.finer_curved_tried)
+            report_again(program, "refined again with more vertices of T counted as curved (a sixth of the angle)",
+                         r.finer_curved_kept ? "with them" : "before it", r.finer_curved_error);
         if (r.wide_corners_left > 0)
             std::fprintf(stderr, "%s: %d corners above 180 degrees left\n", program, r.wide_corners_left);
         if (r.whole_checks)

@@ -108,6 +108,15 @@ struct RefineResult {
     bool finer_min_edge_tried = false, finer_min_edge_kept = false;
     /// Why refining again with the shorter edge stopped, where it threw NumericalError: the first result stands.
     std::string finer_min_edge_error;
+    /// After all of the above, refinement still gave up on a few triangles (at most 4 corners below the minimum
+    /// angle) without reaching the vertex cap, on a T of under 20000 faces, and refined the G given again (with the
+    /// shortest edge of the result that stood: a twentieth of T's mean edge where finer_min_edge_kept) counting as
+    /// curved the vertices of T whose cone angle differs from 2π by more than a sixth of the minimum angle instead of
+    /// a third; where that is better in the same sense, its result is returned.
+    /// finer_min_edge_kept then still says whether the shorter edge had done better than the first result.
+    bool finer_curved_tried = false, finer_curved_kept = false;
+    /// Why refining again with more vertices curved stopped, where it threw NumericalError: what stood before stands.
+    std::string finer_curved_error;
     /// The local checks let through a step that left G invalid: refinement started again from the G given, with
     /// every step checked on all of G (validate(), the overlay included), and this is that result. Slower.
     bool whole_checks = false;
