@@ -1356,8 +1356,9 @@ struct Attempt {
     RefineResult result;
 };
 
-/// The refinements of the G given that refine() may need, in this order: as the options say; the same with nearly
-/// every vertex of T that is not flat counted as curved (k_second_curved_fraction); and, where `without_moves`, both
+/// The refinements of the G given that refine() may need, in this order: as the options say, with the vertices of T
+/// curved by more than `curved_fraction` of the angle counted as curved; the same with nearly every vertex of T that
+/// is not flat counted as curved (k_second_curved_fraction); and, where `without_moves`, both
 /// again without vertex moves. refine() knows which it needs only from the results of those before, so on `threads`
 /// > 1 they all start at once (SpeculativeAttempts), and each one's progress is reported while refine() waits for it.
 class Attempts {
