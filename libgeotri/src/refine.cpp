@@ -1545,6 +1545,12 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         return after;
     };
     ValidationReport after = refine_with(options, k_curved_fraction, g, result);
+    // The options with a shortest edge of k_finer_min_edge_fraction of T's mean edge, for the retries below.
+    auto with_finer_edge = [&] {
+        RefineOptions finer = options;
+        finer.min_edge_length = k_finer_min_edge_fraction * mean_edge_length(g.fine().mesh);
+        return finer;
+    };
     // Given up on some triangles without reaching the cap, with the default shortest edge: once more with a shorter
     // one, and the better kept. Which triangles refinement gives up on follows its choices all along the way, so
     // neither edge is better everywhere (at 30 degrees, with a twentieth alone, skull_thing74168 reaches the angle
@@ -1555,8 +1561,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         result.small_corners_left > 0 && !result.vertex_cap_reached &&
         g.fine().mesh.num_faces() < k_min_faces_for_threads) {
         if (options.progress) options.progress("corners left: starting again with a shorter shortest edge");
-        RefineOptions finer = options;
-        finer.min_edge_length = k_finer_min_edge_fraction * mean_edge_length(g.fine().mesh);
+        const RefineOptions finer = with_finer_edge();
         keep_if_better([&](GeodesicTriangulation& other, RefineResult& other_counts) {
                            return refine_with(finer, k_curved_fraction, other, other_counts);
                        },
@@ -1576,9 +1581,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         g.fine().mesh.num_faces() < k_min_faces_for_threads) {
         if (options.progress) options.progress("a few corners left: starting again with more vertices of T curved");
         // With the shortest edge of the result that stands: a twentieth of the mean edge where that did better.
-        RefineOptions standing = options;
-        if (result.finer_min_edge_kept)
-            standing.min_edge_length = k_finer_min_edge_fraction * mean_edge_length(g.fine().mesh);
+        const RefineOptions standing = result.finer_min_edge_kept ? with_finer_edge() : options;
         const bool finer_tried = result.finer_min_edge_tried, finer_kept = result.finer_min_edge_kept;
         const std::string finer_error = result.finer_min_edge_error;
         keep_if_better([&](GeodesicTriangulation& other, RefineResult& other_counts) {

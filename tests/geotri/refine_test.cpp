@@ -210,7 +210,7 @@ TEST(Refine, attempts_ahead_of_time_give_what_attempts_one_by_one_give) {
         const RefineResult sequential = refine(one_by_one, options);
         options.threads = 5;
         const RefineResult ahead = refine(c.g, options);
-            std::cout << "[ refine   ] " << c.name << ": second attempt " << ahead.second_attempt << ", without moves "
+        std::cout << "[ refine   ] " << c.name << ": second attempt " << ahead.second_attempt << ", without moves "
                   << ahead.without_moves_tried << " (kept " << ahead.without_moves_kept << ")\n";
         EXPECT_EQ(ahead.finer_curved_kept, c.needs == Needs::more_curved_kept) << c.name;
         EXPECT_EQ(ahead.without_moves_kept, c.needs == Needs::without_moves_kept) << c.name;
