@@ -54,6 +54,8 @@ options:
   --keep-windows       keep every window, as the library does by default so that paths are traced at once;
                        without it they are freed as the wavefront passes (PropagationOptions::keep_windows)
   --dump FILE          write the vertex distances (%.17g, one a line) to FILE, for comparing builds; one mesh only
+  --write-obj FILE     write the mesh, as loaded or generated, to FILE as OBJ (coordinates %.17g), to run other
+                       implementations on the very same input; one mesh only
   --pairs N            instead: N point-to-point queries between vertices drawn with a fixed seed, each a
                        propagation with the target as its stop point, plain and goal-directed (A*); the mean CPU
                        time and windows of each, and the largest relative difference of their distances
@@ -69,6 +71,7 @@ struct Options {
     bool keep_windows = false;
     std::string label;
     std::string dump;
+    std::string write_obj;
     long pairs = 0;
     std::vector<std::string> meshes;
 };
@@ -118,6 +121,8 @@ Options parse(int argc, char** argv) {
             options.keep_windows = true;
         } else if (arg == "--dump") {
             options.dump = value();
+        } else if (arg == "--write-obj") {
+            options.write_obj = value();
         } else if (arg == "--pairs") {
             options.pairs = parse_count(value());
             if (options.pairs < 1) usage_error("--pairs must be at least 1");
@@ -130,6 +135,7 @@ Options parse(int argc, char** argv) {
     if (options.meshes.empty()) usage_error("no mesh given");
     if (!options.label.empty() && options.meshes.size() > 1) usage_error("--label needs a single mesh");
     if (!options.dump.empty() && options.meshes.size() > 1) usage_error("--dump needs a single mesh");
+    if (!options.write_obj.empty() && options.meshes.size() > 1) usage_error("--write-obj needs a single mesh");
     return options;
 }
 
@@ -201,6 +207,14 @@ TriangleMesh load(const std::string& spec, const std::string& label) {
     return arrays;
 }
 
+void write_obj(const TriangleMesh& arrays, const std::string& path) {
+    std::FILE* file = std::fopen(path.c_str(), "w");
+    if (file == nullptr) throw geotri::IOError("cannot write " + path);
+    for (const Eigen::Vector3d& p : arrays.positions) std::fprintf(file, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+    for (const auto& t : arrays.triangles) std::fprintf(file, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    if (std::fclose(file) != 0) throw geotri::IOError("cannot write " + path);
+}
+
 // Point-to-point queries, plain and goal-directed. Returns false when their distances differ beyond 1e-12
 // relative: both must be exact.
 bool run_pairs(const std::string& spec, const Options& options) {
@@ -242,6 +256,7 @@ bool run_pairs(const std::string& spec, const Options& options) {
 bool run_one(const std::string& spec, const Options& options) {
     const std::string label = label_of(spec, options);
     const TriangleMesh arrays = load(spec, label);
+    if (!options.write_obj.empty()) write_obj(arrays, options.write_obj);
 
     double start = cpu_seconds();
     const geotri::geodesic::Mesh mesh(arrays.positions, arrays.triangles);
