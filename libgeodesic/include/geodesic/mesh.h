@@ -29,8 +29,10 @@ public:
 
     // Halfedge navigation.
     static int face_of(int h) { return h / 3; }
-    static int next(int h) { return h - h % 3 + (h % 3 + 1) % 3; }
-    static int prev(int h) { return h - h % 3 + (h % 3 + 2) % 3; }
+    // One unsigned remainder and a select: the signed form with two remainders took 5% of a propagation's
+    // instructions.
+    static int next(int h) { return static_cast<unsigned>(h) % 3u == 2u ? h - 2 : h + 1; }
+    static int prev(int h) { return static_cast<unsigned>(h) % 3u == 0u ? h + 2 : h - 1; }
     int tail(int h) const { return halfedges_[h].tail; }
     int head(int h) const { return halfedges_[next(h)].tail; }
     /// The opposite halfedge in the neighbouring face, or -1 on a boundary.
