@@ -220,6 +220,7 @@ void write_obj(const TriangleMesh& arrays, const std::string& path) {
 bool run_pairs(const std::string& spec, const Options& options) {
     const std::string label = label_of(spec, options);
     const TriangleMesh arrays = load(spec, label);
+    if (!options.write_obj.empty()) write_obj(arrays, options.write_obj);
     const geotri::geodesic::Mesh mesh(arrays.positions, arrays.triangles);
     std::uint64_t state = 12345;  // a fixed linear congruential sequence: the same pairs on every run
     auto next_vertex = [&] {
