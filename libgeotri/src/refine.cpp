@@ -1551,15 +1551,19 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         finer.min_edge_length = k_finer_min_edge_fraction * mean_edge_length(g.fine().mesh);
         return finer;
     };
+    // Refinement to an angle gave up on some triangles of a valid result without reaching the cap, on a T small
+    // enough for the retries below (each a whole refinement again), as the result stands when asked.
+    auto corners_left_on_small_t = [&] {
+        return options.min_angle_deg > 0.0 && after.valid && result.small_corners_left > 0 &&
+               !result.vertex_cap_reached && g.fine().mesh.num_faces() < k_min_faces_for_threads;
+    };
     // Given up on some triangles without reaching the cap, with the default shortest edge: once more with a shorter
     // one, and the better kept. Which triangles refinement gives up on follows its choices all along the way, so
     // neither edge is better everywhere (at 30 degrees, with a twentieth alone, skull_thing74168 reaches the angle
     // and femur_cgal and gears end at 28.4 and 27.1 degrees instead of 21.8 and 13.1, but man at 1.1 instead of
     // 18.1). Not on a T of k_min_faces_for_threads faces or more, where the attempts cannot run side by side and
     // each takes seconds: man at 25 degrees would take 6.0 -> 13.1 s for 10 -> 8 corners left.
-    if (options.min_edge_length == 0.0 && options.min_angle_deg > 0.0 && after.valid &&
-        result.small_corners_left > 0 && !result.vertex_cap_reached &&
-        g.fine().mesh.num_faces() < k_min_faces_for_threads) {
+    if (options.min_edge_length == 0.0 && corners_left_on_small_t()) {
         if (options.progress) options.progress("corners left: starting again with a shorter shortest edge");
         const RefineOptions finer = with_finer_edge();
         keep_if_better([&](GeodesicTriangulation& other, RefineResult& other_counts) {
@@ -1576,9 +1580,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     // with 308 corners left instead of 6, man with 18 instead of 15 and lucy_100k with 389 instead of 4, and
     // fractions of a fifth to a half left femur_cgal below the angle. Only where at most k_few_corners_left corners
     // are left, on a T of under k_min_faces_for_threads faces, as above.
-    if (options.min_angle_deg > 0.0 && after.valid && result.small_corners_left > 0 &&
-        result.small_corners_left <= k_few_corners_left && !result.vertex_cap_reached &&
-        g.fine().mesh.num_faces() < k_min_faces_for_threads) {
+    if (corners_left_on_small_t() && result.small_corners_left <= k_few_corners_left) {
         if (options.progress) options.progress("a few corners left: starting again with more vertices of T curved");
         // With the shortest edge of the result that stands: a twentieth of the mean edge where that did better.
         const RefineOptions standing = result.finer_min_edge_kept ? with_finer_edge() : options;
