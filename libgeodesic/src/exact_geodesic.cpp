@@ -188,9 +188,9 @@ private:
     std::vector<int> merge_scratch_;
     /// Copies of the windows that trim_by_other_windows compares a window crossing its face with: the first
     /// k_compare_lookahead of a list of its edge but itself, in the frame of its halfedge. Within a batch they
-    /// change only while the batch's first windows cross, or when a merge adds a window to the list (the batch
-    /// loop copies them again then): walking the list for every window cost 3 to 4 loads of a window each, for
-    /// windows that mostly do not overlap it.
+    /// change only while the batch's first windows cross, or when a merge adds a window to the list, and the batch
+    /// loop copies them again then (collect_compared): walking both lists for every window read up to 8 windows,
+    /// most of which do not overlap it.
     struct ComparedWindows {
         struct Entry {
             EdgeProfile profile;
@@ -447,6 +447,7 @@ bool ExactGeodesic::Impl::trim_by_other_windows(Window& w) const {
     // is never lost; both must differ by more than `slack`, so that two tied windows never remove each other.
     // (Testing the paths through the apexes of the edge's two faces as well cut almost nothing: 8k windows of 1.9M
     // on the bunny, for 27% more instructions.)
+    // The windows compared are those that the batch loop has copied for w (own_compared_, twin_compared_).
     if (w.sy == 0.0) return true;  // see trim_by_end_vertices
     const double scale = w.sigma + std::abs(w.sx) + std::abs(w.sy) + mesh_.length(w.halfedge);
     for (const ComparedWindows* compared : {&own_compared_, &twin_compared_}) {
@@ -1048,8 +1049,9 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             // none from the list's k_merge_lookahead - 1st place on; most windows of a batch are there (the search
             // took 11% of the instructions on a noisy sphere, for 1 merge in 1000 windows).
             int place = 0;  // in the halfedge's list
-            // Nothing comes to the twin's list meanwhile; the halfedge's own list changes at its front only: its
-            // first windows cross first, and a merged window goes before them.
+            // Nothing comes to the twin's list meanwhile. The halfedge's own list changes at its front only: its
+            // first windows are trimmed as they cross, and a merged window goes before them. So from the place
+            // after the first k_compare_lookahead on, the windows compared stay the same until a merge.
             const double length = mesh_.length(h);
             collect_compared(mesh_.twin(h), -1, length, true, twin_compared_);
             int compared_front = -1;
