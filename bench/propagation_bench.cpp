@@ -136,6 +136,9 @@ Options parse(int argc, char** argv) {
     if (!options.label.empty() && options.meshes.size() > 1) usage_error("--label needs a single mesh");
     if (!options.dump.empty() && options.meshes.size() > 1) usage_error("--dump needs a single mesh");
     if (!options.write_obj.empty() && options.meshes.size() > 1) usage_error("--write-obj needs a single mesh");
+    const std::string& obj = options.write_obj;
+    if (!obj.empty() && (obj.size() < 4 || obj.compare(obj.size() - 4, 4, ".obj") != 0))
+        usage_error("--write-obj needs a file ending in .obj");
     return options;
 }
 
@@ -207,12 +210,9 @@ TriangleMesh load(const std::string& spec, const std::string& label) {
     return arrays;
 }
 
+/// The mesh as OBJ (coordinates that read back exactly), the only format that VTP reads (bench/vtp/compare.py).
 void write_obj(const TriangleMesh& arrays, const std::string& path) {
-    std::FILE* file = std::fopen(path.c_str(), "w");
-    if (file == nullptr) throw geotri::IOError("cannot write " + path);
-    for (const Eigen::Vector3d& p : arrays.positions) std::fprintf(file, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
-    for (const auto& t : arrays.triangles) std::fprintf(file, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
-    if (std::fclose(file) != 0) throw geotri::IOError("cannot write " + path);
+    geotri::write_mesh(path, geotri::MeshData{arrays.positions, arrays.triangles});
 }
 
 // Point-to-point queries, plain and goal-directed. Returns false when their distances differ beyond 1e-12
