@@ -130,6 +130,7 @@ int run(tools::Tool& tool) {
         summary.add("moved_vertices", r.moved_vertices);
         summary.add("moves_onto_saddles", r.moves_onto_saddles);
         summary.add("splits_at_saddles", r.splits_at_saddles);
+        summary.add("inside_splits", r.inside_splits);
         summary.add("flips", r.flips);
         summary.add("exempt_corners", r.exempt_corners);
         summary.add("small_corners_left", r.small_corners_left);
@@ -159,11 +160,12 @@ int run(tools::Tool& tool) {
     if (tool.verbose()) {
         const char* program = tool.program().c_str();
         std::fprintf(stderr,
-                     "%s: %zu -> %zu faces: %d edge splits (%d at saddles), %d circumcentres, %d vertices taken "
-                     "out, %d moved (%d onto saddles), %d flips, %d splits refused%s\n",
+                     "%s: %zu -> %zu faces: %d edge splits (%d at saddles), %d face splits (%d well inside a patch, "
+                     "the last resort), %d vertices taken out, %d moved (%d onto saddles), %d flips, %d splits "
+                     "refused%s\n",
                      program, faces_before, g.coarse().n_faces(), r.edge_splits, r.splits_at_saddles, r.face_splits,
-                     r.removed_vertices, r.moved_vertices, r.moves_onto_saddles, r.flips, r.refused_splits,
-                     r.vertex_cap_reached ? "; stopped at the vertex cap (--max-new-vertices)" : "");
+                     r.inside_splits, r.removed_vertices, r.moved_vertices, r.moves_onto_saddles, r.flips,
+                     r.refused_splits, r.vertex_cap_reached ? "; stopped at the vertex cap (--max-new-vertices)" : "");
         std::fprintf(stderr, "%s: corner angles: min %.4g -> %.4g, mean %.4g -> %.4g degrees; longest edge %.6g\n",
                      program, r.angles_before.min_deg, r.angles_after.min_deg, r.angles_before.mean_deg,
                      r.angles_after.mean_deg, r.longest_edge);

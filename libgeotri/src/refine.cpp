@@ -346,7 +346,15 @@ public:
                 // A vertex that refinement inserted can stand in the way of a face given up, where only a removal
                 // mends it (boxpart at 30 degrees): once, the vertices inserted so far become removable too, and
                 // the faces given up are tried again.
-                if (given_up.empty() || all_removable) break;
+                // Then, once, the faces given up are tried again with splits inside their patches or their
+                // neighbours' (split_inside_or_around()).
+                if (given_up.empty() || inside_splits_) break;
+                if (all_removable) {
+                    inside_splits_ = options_.split_inside;
+                    if (!inside_splits_) break;
+                    given_up.clear();
+                    continue;
+                }
                 all_removable = true;
                 given_.clear();
                 for (VertexHandle v : coarse.vertices()) given_.push_back(g_.location(v));
@@ -1108,6 +1116,63 @@ private:
         // then refused for its shape used no such fallback: it would be refused again, so it is not tried.
         for (const auto& [e, fraction] : unsplit)
             if (split_edge_at(e, fraction, min_length, true) == Tried::kept) return true;
+        return inside_splits_ && split_inside_or_around(f, min_length);
+    }
+
+    /// raise_min_angle()'s last resort, for a face f that nothing else mends: a face split well inside f's patch
+    /// (split_inside()), else inside a neighbour's. A split inside f cuts its smallest corner; one inside a neighbour
+    /// leaves it, for the flips after it to mend. The neighbour's new corners may then be as small as f's smallest
+    /// (G's smallest does not fall), not only half the neighbour's: the neighbours of a face with a corner of 3
+    /// degrees, on a G of 4 faces, are wide patches that no split cuts evenly.
+    bool split_inside_or_around(FaceHandle f, double min_length) {
+        const double worst = smallest_corner(f);
+        bool kept = split_inside(f, std::max(0.5 * worst, keep_above_), min_length);
+        for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
+            if (kept) break;
+            const FaceHandle n = g_.coarse().face_handle(g_.coarse().opposite_halfedge_handle(h));
+            kept = n.is_valid() &&
+                   split_inside(n, std::max(std::min(0.5 * smallest_corner(n), worst), keep_above_), min_edge_of(n));
+        }
+        result_.inside_splits += kept;
+        return kept;
+    }
+
+    /// A face split of f at a point well inside its patch: walked straight from a corner along its bisector, as far
+    /// as the incentre of f's intrinsic layout or half as far, the widest corner first. On a very coarse G (the
+    /// coarsest that decimation gives has 4 faces on a sphere-like T, each patch a quarter of it), the geodesics from
+    /// a point on an edge to the opposite corners leave their patches, and every edge split is refused; geodesics
+    /// from a point inside a patch are more often inside it.
+    bool split_inside(FaceHandle f, double floor, double min_length) {
+        const CoarseMesh& coarse = g_.coarse();
+        const auto h = halfedges_of(coarse, f);
+        std::array<double, 3> length{}, corner{};
+        for (std::size_t i = 0; i < 3; ++i) {
+            length[i] = g_.length(coarse.edge_handle(h[i]));
+            corner[i] = corner_angle(g_, h[i]);
+        }
+        const double half_perimeter = 0.5 * (length[0] + length[1] + length[2]);
+        std::array<std::size_t, 3> order{0, 1, 2};
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return corner[a] > corner[b]; });
+        for (std::size_t i : order) {
+            // The corner at h[i]'s from-vertex lies between h[i] and the edge before it; h[i]'s next is opposite.
+            const double ab = length[i], ca = length[(i + 2) % 3], bc = length[(i + 1) % 3];
+            const double layout_angle =
+                std::acos(std::clamp((ab * ab + ca * ca - bc * bc) / (2.0 * ab * ca), -1.0, 1.0));
+            // The incentre lies inside the layout, no farther from the corner than its longer side.
+            const double to_incentre =
+                std::min((half_perimeter - bc) / std::cos(0.5 * layout_angle), std::max(ab, ca));
+            if (!(to_incentre > 0.0)) continue;
+            const SurfacePoint& start = g_.location(coarse.from_vertex_handle(h[i]));
+            const double theta = cone_angle(g_.fine().mesh, start);
+            const double direction = std::fmod(detail::start_direction(g_, h[i]) + 0.5 * corner[i], theta);
+            for (double fraction : {1.0, 0.5}) {
+                const StraightGeodesicResult walk =
+                    trace_straight_geodesic(g_.fine().mesh, start, direction, fraction * to_incentre);
+                if (walk.stopped_at_boundary) continue;
+                if (insert_in_one_of({f}, walk.end, floor, min_length)) return true;
+            }
+        }
         return false;
     }
 
@@ -1342,6 +1407,7 @@ private:
     long g_version_ = 0;                  ///< how many times replace_g() changed G
     std::vector<EdgeHandle> split_edges_;  ///< the edges that the last split kept and its flips made or changed
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
+    bool inside_splits_ = false;  ///< refine_face() tries split_inside_or_around() too (the last resort)
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;
     bool whole_checks_ = false;

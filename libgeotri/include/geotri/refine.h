@@ -54,6 +54,13 @@ struct RefineOptions {
     /// at a saddle of T that its geodesic bends at, in the triangle's circumcircle, even closer to a coarse vertex
     /// than the shortest edge that refinement makes elsewhere (down to the shortest edge of T there).
     bool split_at_saddles = true;
+    /// Last, where only triangles given up on are left below min_angle_deg (after the removals above), each is tried
+    /// again, and from then on a triangle that nothing else mends gets a face split at a point well inside its patch
+    /// (walked from a corner along its bisector, as far as the incentre of its intrinsic layout or half as far), or
+    /// else inside a neighbour's patch, whose flips may then mend it. Such points are where the new geodesics most
+    /// often stay inside the patch: on a very coarse G, or where geodesics bend at saddles of T, those from an edge's
+    /// midpoint or a circumcentre leave it.
+    bool split_inside = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
     /// where angle refinement cascades instead of converging (it does on some curved meshes at 25-30 degrees), it
@@ -74,12 +81,13 @@ struct RefineResult {
     bool valid_before = false, valid_after = false;
     std::vector<Violation> remaining;  ///< the violations left when G is invalid after (it should never be)
     int edge_splits = 0;               ///< bisections, and circumcentres that fell on an edge
-    int face_splits = 0;               ///< circumcentres inserted inside a patch
+    int face_splits = 0;               ///< circumcentres inserted inside a patch, and inside_splits
     int refused_splits = 0;            ///< splits that split_edge() or split_face() refused (G kept as it was)
     int removed_vertices = 0;          ///< vertices taken out (RefineOptions::remove_vertices)
     int moved_vertices = 0;            ///< vertices moved within their star, to raise a corner or narrow one
     int moves_onto_saddles = 0;        ///< of those, the moves onto a saddle of T that a geodesic bent at
     int splits_at_saddles = 0;         ///< edge splits at a saddle of T that the edge's geodesic bent at
+    int inside_splits = 0;             ///< face splits well inside a patch, the last resort (split_inside)
     int flips = 0;
     int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
     int small_corners_left = 0;        ///< other corners below the minimum angle, where refinement gave up
