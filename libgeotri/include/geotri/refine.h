@@ -31,7 +31,7 @@ struct RefineOptions {
     /// and a twentieth too where that gives up: RefineResult::finer_min_edge_tried), nor make a new edge shorter than
     /// it, so that refinement does not chase a needle of T with ever smaller triangles. Near an edge of the G given
     /// that is shorter (two input vertices close together: a small feature of T), the bound is that edge's length
-    /// plus the distance to it, so that its triangles are mended too.
+    /// plus a quarter of the distance to it, so that its triangles are mended too.
     double min_edge_length = 0.0;
     bool flip = true;            ///< flip towards geodesic Delaunay (angle criterion) around every new vertex
     /// While raising the minimum angle, a vertex of the G given (not one that refinement added) at an end of the
