@@ -1146,10 +1146,10 @@ private:
     }
 
     /// A face split of f at a point well inside its patch: walked straight from a corner along its bisector, as far
-    /// as the incentre of f's intrinsic layout or half as far, the widest corner first. On a very coarse G (the
-    /// coarsest that decimation gives has 4 faces on a sphere-like T, each patch a quarter of it), the geodesics from
-    /// a point on an edge to the opposite corners leave their patches, and every edge split is refused; geodesics
-    /// from a point inside a patch are more often inside it.
+    /// as the incentre of f's intrinsic layout or half as far, the widest corner first. Where a patch is large (the
+    /// coarsest G that decimation gives has 4 faces on a sphere-like T) or a geodesic of it bends at a saddle of T,
+    /// the geodesics from a point on an edge or a circumcentre to the far corners leave the patch, and those splits
+    /// are refused; geodesics from a point deep inside it leave it less often.
     bool split_inside(FaceHandle f, double floor, double min_length) {
         const CoarseMesh& coarse = g_.coarse();
         const auto h = halfedges_of(coarse, f);
