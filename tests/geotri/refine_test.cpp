@@ -706,8 +706,8 @@ TEST(Refine, faces_too_small_to_refine_are_mended_by_vertex_moves_at_the_end) {
 // Where nothing else mends a face, it gets a face split well inside its patch or a neighbour's, as the last resort.
 // Traced as the pipeline does, man at 320 faces has large triangles whose geodesics bend at saddles of T: at 25
 // degrees every circumcentre and edge split tried there was refused, and refinement ended with 10 corners at 10.6
-// degrees. The coarsest G of triceratops (46 faces) has patches so wide that every split of the face with its last
-// small corner (22.1 degrees) was refused; a split inside a neighbour's patch lets the flips after it mend it.
+// degrees. On the coarsest G of triceratops (46 faces, wide patches), the face with the last small corner (22.1
+// degrees) was given up: every circumcentre, edge split and move tried there was refused.
 TEST(Refine, faces_that_nothing_else_mends_get_a_split_well_inside_their_patch_or_a_neighbours) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
