@@ -9,6 +9,7 @@
 #include "polyline_verdicts.h"
 #include "stale_trials.h"
 #include "thread_count.h"
+#include "triangle_layout.h"
 #include "violation_count.h"
 
 #include <algorithm>
@@ -53,13 +54,6 @@ std::vector<int> candidate_edges(const CoarseMesh& coarse, const ValidationRepor
             for (EdgeHandle e : coarse.fe_range(OpenMesh::FaceHandle(f))) edges.insert(e.idx());
     }
     return {edges.begin(), edges.end()};
-}
-
-/// The angle opposite side `opposite` in a triangle with sides `opposite`, `s`, `t` (law of cosines), clamped for
-/// side lengths that break the triangle inequality by rounding.
-double opposite_angle(double opposite, double s, double t) {
-    const double cosine = (s * s + t * t - opposite * opposite) / (2.0 * s * t);
-    return std::acos(std::clamp(cosine, -1.0, 1.0));
 }
 
 /// What one edge's evaluation found: a flip to do, or a refusal to count.
@@ -210,7 +204,8 @@ private:
         const double l_ca = g_.length(coarse.edge_handle(coarse.prev_halfedge_handle(ab)));
         const double l_ad = g_.length(coarse.edge_handle(coarse.next_halfedge_handle(ba)));
         const double l_db = g_.length(coarse.edge_handle(coarse.prev_halfedge_handle(ba)));
-        return opposite_angle(plan.length, l_ad, l_ca) + opposite_angle(plan.length, l_bc, l_db) < before;
+        return detail::opposite_angle(plan.length, l_ad, l_ca) + detail::opposite_angle(plan.length, l_bc, l_db) <
+               before;
     }
 
     Evaluation evaluate(EdgeHandle e, geodesic::ExactGeodesic& propagation) const {
@@ -230,7 +225,7 @@ private:
             const double l_ab = g_.length(e), l_bc = g_.length(coarse.edge_handle(bc));
             const double l_ca = g_.length(coarse.edge_handle(ca)), l_ad = g_.length(coarse.edge_handle(ad));
             const double l_db = g_.length(coarse.edge_handle(db));
-            result.before = opposite_angle(l_ab, l_bc, l_ca) + opposite_angle(l_ab, l_ad, l_db);
+            result.before = detail::opposite_angle(l_ab, l_bc, l_ca) + detail::opposite_angle(l_ab, l_ad, l_db);
             if (!(result.before > k_pi + options_.margin)) return result;
         }
         FlipOptions flip_options;

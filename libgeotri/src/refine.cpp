@@ -17,6 +17,7 @@
 #include "polygon_triangulation.h"
 #include "speculative_attempts.h"
 #include "thread_count.h"
+#include "triangle_layout.h"
 
 #include <Eigen/Dense>
 
@@ -794,8 +795,7 @@ private:
         double best_margin = 0.0, best_direction = 0.0, best_radius = 0.0, best_phi = 0.0;
         for (std::size_t i = 0; i < 3; ++i) {
             const double ab = length[i], bc = length[(i + 1) % 3], ca = length[(i + 2) % 3];
-            const double cosine = (ab * ab + ca * ca - bc * bc) / (2.0 * ab * ca);
-            const double layout_angle = std::acos(std::clamp(cosine, -1.0, 1.0));
+            const double layout_angle = detail::opposite_angle(bc, ab, ca);
             const double cx = ca * std::cos(layout_angle), cy = ca * std::sin(layout_angle);
             if (!(cy > 0.0)) continue;
             const double ux = 0.5 * ab, uy = (ca * ca - ab * cx) / (2.0 * cy);
@@ -1124,25 +1124,22 @@ private:
         // then refused for its shape used no such fallback: it would be refused again, so it is not tried.
         for (const auto& [e, fraction] : unsplit)
             if (split_edge_at(e, fraction, min_length, true) == Tried::kept) return true;
-        return inside_splits_ && split_inside_or_around(f, min_length);
+        return inside_splits_ && split_inside_or_around(f);
     }
 
     /// raise_min_angle()'s last resort, for a face f that nothing else mends: a face split well inside f's patch
     /// (split_inside()), else inside a neighbour's. A split inside f cuts its smallest corner; one inside a neighbour
-    /// leaves it, for the flips after it to mend. The neighbour's new corners may then be as small as f's smallest
-    /// (G's smallest does not fall), not only half the neighbour's: the neighbours of a face with a corner of 3
-    /// degrees, on a G of 4 faces, are wide patches that no split cuts evenly.
-    bool split_inside_or_around(FaceHandle f, double min_length) {
+    /// leaves it, for the flips after it to mend. Each try's floor is half the smallest corner of the face split, but
+    /// never above f's smallest (G's smallest does not fall): the neighbours of a face with a corner of 3 degrees, on
+    /// a G of 4 faces, are wide patches that no split cuts evenly.
+    bool split_inside_or_around(FaceHandle f) {
         const double worst = smallest_corner(f);
-        bool kept = split_inside(f, std::max(0.5 * worst, keep_above_), min_length);
-        for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
-            if (kept) break;
-            const FaceHandle n = g_.coarse().face_handle(g_.coarse().opposite_halfedge_handle(h));
-            kept = n.is_valid() &&
-                   split_inside(n, std::max(std::min(0.5 * smallest_corner(n), worst), keep_above_), min_edge_of(n));
-        }
-        result_.inside_splits += kept;
-        return kept;
+        for (FaceHandle x : with_neighbours(f))
+            if (split_inside(x, std::max(std::min(0.5 * smallest_corner(x), worst), keep_above_), min_edge_of(x))) {
+                ++result_.inside_splits;
+                return true;
+            }
+        return false;
     }
 
     /// A face split of f at a point well inside its patch: walked straight from a corner along its bisector, as far
@@ -1165,8 +1162,7 @@ private:
         for (std::size_t i : order) {
             // The corner at h[i]'s from-vertex lies between h[i] and the edge before it; h[i]'s next is opposite.
             const double ab = length[i], ca = length[(i + 2) % 3], bc = length[(i + 1) % 3];
-            const double layout_angle =
-                std::acos(std::clamp((ab * ab + ca * ca - bc * bc) / (2.0 * ab * ca), -1.0, 1.0));
+            const double layout_angle = detail::opposite_angle(bc, ab, ca);
             // The incentre lies inside the layout, no farther from the corner than its longer side.
             const double to_incentre =
                 std::min((half_perimeter - bc) / std::cos(0.5 * layout_angle), std::max(ab, ca));
