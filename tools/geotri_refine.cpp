@@ -160,11 +160,11 @@ int run(tools::Tool& tool) {
     if (tool.verbose()) {
         const char* program = tool.program().c_str();
         std::fprintf(stderr,
-                     "%s: %zu -> %zu faces: %d edge splits (%d at saddles), %d face splits (%d well inside a patch, "
-                     "the last resort), %d vertices taken out, %d moved (%d onto saddles), %d flips, %d splits "
-                     "refused%s\n",
-                     program, faces_before, g.coarse().n_faces(), r.edge_splits, r.splits_at_saddles, r.face_splits,
-                     r.inside_splits, r.removed_vertices, r.moved_vertices, r.moves_onto_saddles, r.flips,
+                     "%s: %zu -> %zu faces: %d edge splits, %d face splits (%d well inside a patch, the last "
+                     "resort), %d of both in the end game at vertices of T, %d vertices taken out, %d moved (%d onto "
+                     "saddles), %d flips, %d splits refused%s\n",
+                     program, faces_before, g.coarse().n_faces(), r.edge_splits, r.face_splits, r.inside_splits,
+                     r.splits_at_saddles, r.removed_vertices, r.moved_vertices, r.moves_onto_saddles, r.flips,
                      r.refused_splits, r.vertex_cap_reached ? "; stopped at the vertex cap (--max-new-vertices)" : "");
         std::fprintf(stderr, "%s: corner angles: min %.4g -> %.4g, mean %.4g -> %.4g degrees; longest edge %.6g\n",
                      program, r.angles_before.min_deg, r.angles_after.min_deg, r.angles_before.mean_deg,

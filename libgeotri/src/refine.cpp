@@ -385,11 +385,12 @@ public:
             if (options_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, MoveGoal{})) continue;
             // Where neither a circumcentre nor a split mends the worst triangle, one of its vertices may move onto
             // a saddle of T that its geodesics bend at, before the triangle is given up.
-            // In the end game (at most k_few_corners_left faces below the angle) an edge at the triangle may be
-            // split at a saddle of T that its geodesic bends at (split_at_saddle()).
+            // In the end game (at most k_few_corners_left faces below the angle, or the last resort's pass) the
+            // triangle may be split at a saddle of T that its geodesics bend at, or at a curved vertex of T in its
+            // circumcircle (split_at_saddle()).
             if (!refine_face(worst) &&
                 !(options_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, saddle_move)) &&
-                !(faces.size_below() <= k_few_corners_left && split_at_saddle(worst)))
+                !((faces.size_below() <= k_few_corners_left || inside_splits_) && split_at_saddle(worst)))
                 given_up.insert(vertices_of(coarse, worst));
             progress("angle refinement");
         }
@@ -671,6 +672,7 @@ private:
             return Tried::refused_shape;
         }
         replace_g(trial, &changed, &split_trial_);
+        split_vertex_ = done.vertex;
         split_edges_ = flipped;
         for (HalfedgeHandle h : g_.coarse().voh_range(done.vertex)) split_edges_.push_back(g_.coarse().edge_handle(h));
         ++counter;
@@ -958,8 +960,11 @@ private:
         if (from.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.erase(from.vertex);
         const SurfacePoint& to = best->moved->location(best->vertex);
         if (to.kind == geodesic::PointKind::vertex) coarse_at_fine_vertex_.insert(to.vertex);
-        if (best->target) ++result_.moves_onto_saddles;
         replace_g(*best->moved, &best->changed, best->slot);
+        if (best->target) {
+            ++result_.moves_onto_saddles;
+            add_short_edges_at(best->vertex);
+        }
         ++result_.moved_vertices;
         result_.flips += best->flips;
         return true;
@@ -1072,16 +1077,17 @@ private:
     }
 
     /// The saddles of T, curved as refinement counts it (curved()), that the geodesics of f's two edges at its
-    /// vertex v pass through, each once, in the order met: a shortest geodesic passes through no vertex of positive
-    /// curvature, and bends only at a saddle, whose curvature the two faces beside it then share, so that their
-    /// corners sum to well below π (on femur_cgal, to 86 degrees) and no split of theirs can mend them. Moved onto
-    /// the saddle, v takes that curvature as its own. (No coarse vertex is on a geodesic of a valid G.)
-    std::vector<int> saddles_on_edges_of(FaceHandle f, VertexHandle v) const {
+    /// vertex v (of all three where v is invalid) pass through, each once, in the order met: a shortest geodesic
+    /// passes through no vertex of positive curvature, and bends only at a saddle, whose curvature the two faces
+    /// beside it then share, so that their corners sum to well below π (on femur_cgal, to 86 degrees) and no split
+    /// of theirs can mend them. Moved onto the saddle, v takes that curvature as its own. (No coarse vertex is on a
+    /// geodesic of a valid G.)
+    std::vector<int> saddles_on_edges_of(FaceHandle f, VertexHandle v = VertexHandle()) const {
         const geodesic::Mesh& mesh = g_.fine().mesh;
         const CoarseMesh& coarse = g_.coarse();
         std::vector<int> found;
         for (HalfedgeHandle h : halfedges_of(coarse, f)) {
-            if (coarse.from_vertex_handle(h) != v && coarse.to_vertex_handle(h) != v) continue;
+            if (v.is_valid() && coarse.from_vertex_handle(h) != v && coarse.to_vertex_handle(h) != v) continue;
             const Polyline& line = g_.polyline(coarse.edge_handle(h));
             for (std::size_t i = 1; i + 1 < line.size(); ++i) {
                 const SurfacePoint& p = line[i];
@@ -1180,26 +1186,43 @@ private:
         return false;
     }
 
-    /// In the end game, where refine_face() and the moves give up on f: the curved vertex of T in f's circumcircle,
-    /// where it lies on the geodesic of an edge at one of f's corners (a saddle that the geodesic bends at, in no
-    /// patch), splits that edge there. Such a saddle can sit closer to a coarse vertex than refinement's shortest
-    /// edge: on cheese, a face of T a thirtieth of its mean edge across holds a saddle of 494 degrees next to a cone
-    /// of 294 degrees with a coarse vertex on it. So the split may make edges as short as the shortest edge of T at
-    /// the saddle (finitely many such splits: one per vertex of T), and its edges shorter than min_edge_ become
-    /// features that the triangles around them are mended at the scale of (min_edge_of()). Tried wherever a face
-    /// would be given up, such splits took cheese to 25 degrees but left man at 30 degrees with 77 corners at
-    /// 1.8 degrees instead of 15 at 18.1, cascading next to the short edges: hence the end game only.
+    /// In the end game, where refine_face() and the moves give up on f: a split at a saddle of T that f's geodesics
+    /// bend at, or else at the curved vertex of T nearest f's circumcentre (in its circumcircle). A saddle on a
+    /// geodesic of f takes its curvature out of the corners of f and of the face beside it, and one inside f's patch
+    /// out of f's, so that their corners sum to far below pi (93 degrees on man and gears) and no other split mends
+    /// them; a coarse vertex on the saddle takes that curvature as its own. Such a vertex can sit closer to a coarse
+    /// vertex than refinement's shortest edge: on cheese, a face of T a thirtieth of its mean edge across holds a
+    /// saddle of 494 degrees next to a cone of 294 degrees with a coarse vertex on it; on man, saddles of 419 and 447
+    /// degrees lie 0.07 of T's mean edge apart. So the split may make edges of any length (such splits are finitely
+    /// many: one per vertex of T), and its edges shorter than min_edge_ become features that the triangles around
+    /// them are mended at the scale of (min_edge_of()). Tried wherever a face would be given up, such splits took
+    /// cheese to 25 degrees but left man at 30 degrees with 77 corners at 1.8 degrees instead of 15 at 18.1,
+    /// cascading next to the short edges: hence the end game only (and the last resort's pass, split_inside).
     bool split_at_saddle(FaceHandle f) {
         if (!options_.split_at_saddles) return false;
-        const std::optional<Centre> centre = circumcentre(f);
-        if (!centre) return false;
-        const std::optional<int> found = curved_vertex_near(centre->point, centre->radius);
-        if (!found) return false;
-        const int cone = *found;
-        const double floor = std::max(0.5 * smallest_corner(f), keep_above_), min_length = min_edge_of(f);
-        const geodesic::Mesh& mesh = g_.fine().mesh;
-        double feature = min_length;  // the shortest edge that the split may make
-        for (int x : mesh.outgoing_halfedges(cone)) feature = std::min(feature, mesh.length(x));
+        std::vector<int> cones = saddles_on_edges_of(f);
+        if (const std::optional<Centre> centre = circumcentre(f))
+            if (const std::optional<int> near = curved_vertex_near(centre->point, centre->radius))
+                if (std::find(cones.begin(), cones.end(), *near) == cones.end()) cones.push_back(*near);
+        for (int cone : cones)
+            if (split_at_vertex_of_t(f, cone)) {
+                ++result_.splits_at_saddles;
+                coarse_at_fine_vertex_.insert(cone);
+                add_short_edges_at(split_vertex_);
+                return true;
+            }
+        return false;
+    }
+
+    /// split_at_saddle()'s split at vertex `cone` of T: of the geodesic of an edge at one of f's corners that
+    /// passes through it (no two geodesics of a valid G meet, so there is at most one), else of the patch of f or
+    /// of a neighbour that holds it. A geodesic bent at a saddle has no better place to split, and its split may
+    /// make corners as small as keep_above_ (7 degrees on man at 30 degrees, next to a saddle of 472, where f's
+    /// smallest was 22.7) for the triangles around it to mend; a face split must keep half of f's smallest, as
+    /// refine_face()'s do: the curved vertex nearest the circumcentre may be a cone of positive curvature (350
+    /// degrees on man's coarsest G), and with keep_above_ as the floor its split made corners of 2.9 degrees there,
+    /// from which refinement cascaded to the vertex cap.
+    bool split_at_vertex_of_t(FaceHandle f, int cone) {
         const CoarseMesh& coarse = g_.coarse();
         for (VertexHandle v : coarse.fv_range(f))
             for (HalfedgeHandle h : coarse.voh_range(v)) {
@@ -1210,31 +1233,25 @@ private:
                     auto split = [&](GeodesicTriangulation& trial) {
                         return split_edge_at_point(trial, e, i, split_options(false));
                     };
-                    // No two geodesics of a valid G meet: this is the only one through the vertex.
-                    if (try_split(split, std::max(floor, floor_at(e)), feature, result_.edge_splits) != Tried::kept)
-                        return false;
-                    ++result_.splits_at_saddles;
-                    coarse_at_fine_vertex_.insert(cone);
-                    add_short_edges_at(SurfacePoint::at_vertex(cone));
-                    return true;
+                    return try_split(split, keep_above_, 0.0, result_.edge_splits) == Tried::kept;
                 }
             }
-        return false;
+        return insert_in_one_of(with_neighbours(f), SurfacePoint::at_vertex(cone),
+                                std::max(0.5 * smallest_corner(f), keep_above_), 0.0);
     }
 
-    /// The edges shorter than min_edge_ at the coarse vertex at `p`, which a split just made, as features of the
-    /// input (short_given_edges_); every face is measured again, as min_edge_of() changed around them.
-    void add_short_edges_at(const SurfacePoint& p) {
+    /// The edges shorter than min_edge_ at coarse vertex v, which a split or a move onto a saddle just put there, as
+    /// features of the input (short_given_edges_); every face is measured again, as min_edge_of() changed around them.
+    void add_short_edges_at(VertexHandle v) {
         const CoarseMesh& coarse = g_.coarse();
         const geodesic::Mesh& mesh = g_.fine().mesh;
-        for (EdgeHandle e : split_edges_)
-            for (int side = 0; side < 2; ++side) {
-                const HalfedgeHandle h = coarse.halfedge_handle(e, side);
-                if (!(g_.location(coarse.from_vertex_handle(h)) == p) || !(g_.length(e) < min_edge_)) continue;
-                short_given_edges_.push_back(
-                    {{mesh.point(p), mesh.point(g_.location(coarse.to_vertex_handle(h)))}, g_.length(e)});
-                renumbered_ = true;
-            }
+        for (HalfedgeHandle h : coarse.voh_range(v)) {
+            const EdgeHandle e = coarse.edge_handle(h);
+            if (!(g_.length(e) < min_edge_)) continue;
+            short_given_edges_.push_back(
+                {{mesh.point(g_.location(v)), mesh.point(g_.location(coarse.to_vertex_handle(h)))}, g_.length(e)});
+            renumbered_ = true;
+        }
     }
 
     /// The coarse face where a straight walk of `distance` from corner `corner` ends, `direction` radians from the
@@ -1400,7 +1417,7 @@ private:
         std::array<Eigen::Vector3d, 2> ends;
         double length;
     };
-    /// The edges of the G given shorter than min_edge_, and those of splits at saddles (split_at_saddle())
+    /// The edges of the G given shorter than min_edge_, and those of splits and moves at saddles (add_short_edges_at())
     std::vector<ShortEdge> short_given_edges_;
     std::set<std::vector<double>> failed_stars_;  ///< star_key() of the removals tried without success
     std::set<std::vector<double>> failed_moves_;  ///< star_key() of the moves tried without success
@@ -1410,6 +1427,7 @@ private:
     std::vector<TrialSlot> move_trials_;  ///< and for those of the moves tried together
     long g_version_ = 0;                  ///< how many times replace_g() changed G
     std::vector<EdgeHandle> split_edges_;  ///< the edges that the last split kept and its flips made or changed
+    VertexHandle split_vertex_;            ///< the new vertex of the last split kept
     double min_edge_ = 0.0, min_angle_ = 0.0, curved_ = 0.0;
     bool inside_splits_ = false;  ///< refine_face() tries split_inside_or_around() too (the last resort)
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)

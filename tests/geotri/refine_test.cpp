@@ -205,7 +205,9 @@ TEST(Refine, attempts_ahead_of_time_give_what_attempts_one_by_one_give) {
         flip_to_delaunay(c.g);
         RefineOptions options;
         options.min_angle_deg = c.angle;
-        options.split_inside = false;  // with them, the first attempt reaches the angle on femur_cgal and footbones
+        // With either, the first attempt reaches the angle on femur_cgal and footbones.
+        options.split_inside = false;
+        options.split_at_saddles = false;
         options.threads = 1;
         GeodesicTriangulation one_by_one = c.g;
         const RefineResult sequential = refine(one_by_one, options);
@@ -364,9 +366,9 @@ TEST(Refine, vertex_moves_reach_30_degrees_where_circumcentres_alone_cascade) {
 }
 
 // Traced as the pipeline does (in the decimation's classes), footbones and boxpart at 30 degrees are left with one
-// corner below the angle with vertex moves (and without splits inside patches, which now mend it in the first
-// attempt), where the ways out of refinement without them (a longer cap, removing the vertices it added) reach it:
-// refinement tries again without moves and returns that result.
+// corner below the angle with vertex moves (and without splits inside patches or at saddles, either of which now
+// mends it in the first attempt), where the ways out of refinement without them (a longer cap, removing the vertices
+// it added) reach it: refinement tries again without moves and returns that result.
 TEST(Refine, where_vertex_moves_leave_a_few_corners_refinement_tries_without_them) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
@@ -377,6 +379,7 @@ TEST(Refine, where_vertex_moves_leave_a_few_corners_refinement_tries_without_the
         RefineResult r;
         RefineOptions options;
         options.split_inside = false;
+        options.split_at_saddles = false;
         check_min_angle(g, 30.0, mesh, &r, options);
         EXPECT_TRUE(r.without_moves_tried);
         EXPECT_TRUE(r.without_moves_kept);
@@ -497,15 +500,17 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     flip_to_delaunay(g);
     const GeodesicTriangulation flipped = g;
     RefineResult r;
-    // With vertex moves, triceratops reaches 25 degrees at the first attempt.
-    check_min_angle(g, 25.0, "triceratops, 320 faces", &r, without_moves());
+    // With vertex moves or splits at saddles, triceratops reaches 25 degrees at the first attempt.
+    RefineOptions plain = without_moves();
+    plain.split_at_saddles = false;
+    check_min_angle(g, 25.0, "triceratops, 320 faces", &r, plain);
     EXPECT_TRUE(r.second_attempt);
     EXPECT_TRUE(r.second_attempt_kept);
 
     // At 30 degrees both attempts give up next to saddles of T: the first result, which leaves fewer corners, is
     // kept, and refining again gives the same G. The shortest edge given (the default's), refinement does not
     // start again with a shorter one (where_refinement_gives_up_it_starts_again_with_a_shorter_shortest_edge).
-    RefineOptions options = without_moves();
+    RefineOptions options = plain;
     options.min_angle_deg = 30.0;
     options.min_edge_length = 0.1 * mean_fine_edge(flipped);
     GeodesicTriangulation at_30 = flipped, again = flipped;
@@ -546,6 +551,9 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_with_a_shorter_shortest_e
     flip_to_delaunay(flipped);
     RefineOptions options;
     options.min_angle_deg = 30.0;
+    // With splits at saddles, a tenth leaves a single corner: the retry with more vertices curved then follows the
+    // one that meets trouble below, and the result is no longer the tenth's.
+    options.split_at_saddles = false;
     GeodesicTriangulation g = flipped, tenth = flipped, troubled = flipped;
     const RefineResult r = refine(g, options);
     RefineOptions given_tenth = options;
@@ -687,6 +695,37 @@ TEST(Refine, an_edge_is_split_at_a_saddle_of_t_that_its_geodesic_bends_at) {
     EXPECT_GT(before.small_corners_left, 0);
 }
 
+// Traced as the pipeline does, man at 320 faces has clusters of saddles of T (cones of 370-470 degrees). Refined to
+// 30 degrees, its triangles there came out smaller than T's edges, and 5 corners were left at 22.1 degrees, in 4 faces
+// whose corners summed to 93-172 degrees. One held a saddle of 447 degrees inside its patch, and one had a geodesic
+// that bent at a saddle of 472. Two had an edge of 0.09 of T's mean edge between two vertices moved onto saddles:
+// too short for refinement to refine. gears at 25 degrees had a corner left at 23.2 degrees, in a face whose corners
+// summed to 93: one of its geodesics bent at a saddle of 509 degrees, which was not the curved vertex nearest its
+// circumcentre. In the end game, a split at each such saddle and the short edges of moves onto saddles counted as
+// features of the input take every corner to the angle.
+TEST(Refine, saddles_of_t_that_take_curvature_out_of_a_face_get_a_vertex_of_g) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    for (const auto& [mesh, angle] : {std::pair{"stress/man.off", 30.0}, {"stress/gears.stl", 25.0}}) {
+        SCOPED_TRACE(mesh);
+        GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
+        flip_to_delaunay(g);
+        GeodesicTriangulation without = g;
+        RefineResult r;
+        check_min_angle(g, angle, std::string(mesh) + ", 320 faces", &r);
+        EXPECT_GT(r.splits_at_saddles, 0);
+        RefineOptions options;
+        options.min_angle_deg = angle;
+        options.split_at_saddles = false;
+        const RefineResult before = refine(without, options);
+        std::cout << "[ refine   ] without splits at saddles: " << before.angles_after.min_deg << "°, "
+                  << before.small_corners_left << " corners left\n";
+        EXPECT_TRUE(before.valid_after);
+        EXPECT_GT(before.small_corners_left, 0);
+    }
+}
+
 // A face below the angle with an edge shorter than refinement refines (an edge that a flip made, say) used to be left
 // as it was: traced as the pipeline does, skull_thing74168 at 25 degrees ended with 5 corners left, at 6.1 degrees,
 // and its first attempt left 32 faces below the angle, 30 of them such faces. Once nothing else is left to mend, each
@@ -723,6 +762,7 @@ TEST(Refine, faces_that_nothing_else_mends_get_a_split_well_inside_their_patch_o
         RefineOptions options;
         options.min_angle_deg = 25.0;
         options.split_inside = false;
+        options.split_at_saddles = false;  // with them, triceratops reaches the angle without splits inside too
         const RefineResult before = refine(without, options);
         std::cout << "[ refine   ] without splits inside patches: " << before.angles_after.min_deg << "°, "
                   << before.small_corners_left << " corners left\n";
@@ -754,7 +794,8 @@ double shortest_new_edge(const GeodesicTriangulation& g, const GeodesicTriangula
 // Where refinement cannot reach the angle (needles and sharp cones of a CAD part), it gives up on some corners, but
 // it never makes the smallest corner smaller than it was: every split that it keeps makes no corner below that. Nor
 // does it make an edge shorter than the shortest that it refines (the triangles there could not be mended), except
-// next to a shorter edge of the G given, and never shorter than that edge.
+// next to a shorter edge of the G given, and never shorter than that edge. (Splits at saddles, off here, may make edges
+// of any length.)
 TEST(Refine, the_smallest_corner_never_gets_smaller) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
@@ -766,6 +807,7 @@ TEST(Refine, the_smallest_corner_never_gets_smaller) {
     const GeodesicTriangulation given = g;
     RefineOptions options;
     options.min_angle_deg = 25.0;
+    options.split_at_saddles = false;
     double sum = 0.0;
     for (int h = 0; h < g.fine().mesh.num_halfedges(); ++h) sum += g.fine().mesh.length(h);
     options.min_edge_length = 0.2 * sum / g.fine().mesh.num_halfedges();
@@ -779,6 +821,16 @@ TEST(Refine, the_smallest_corner_never_gets_smaller) {
     for (EdgeHandle e : given.coarse().edges()) shortest_given = std::min(shortest_given, given.length(e));
     EXPECT_GE(shortest_new_edge(g, given), std::min(options.min_edge_length, shortest_given));
     expect_valid_with_area(g);
+    // With them, whose splits of a geodesic may make corners down to the smallest one given.
+    GeodesicTriangulation with_saddles = given;
+    options.split_at_saddles = true;
+    const RefineResult s = refine(with_saddles, options);
+    std::cout << "[ refine   ] with splits at saddles: " << s.angles_after.min_deg << "°, " << s.splits_at_saddles
+              << " of them\n";
+    EXPECT_TRUE(s.valid_after);
+    EXPECT_GT(s.splits_at_saddles, 0);
+    EXPECT_GE(min_corner_deg(with_saddles), before);
+    expect_valid_with_area(with_saddles);
 }
 
 }  // namespace

@@ -50,9 +50,10 @@ struct RefineOptions {
     /// vertex bends at, when every corner that this changes (exempt or not) is then at least half the minimum
     /// angle, before the triangle is given up. With remove_vertices off, the vertices of the G given are not moved.
     bool move_vertices = true;
-    /// In the end game of min_angle_deg (at most 4 faces below it), where a triangle would be given up: split an edge
-    /// at a saddle of T that its geodesic bends at, in the triangle's circumcircle, even closer to a coarse vertex
-    /// than the shortest edge that refinement makes elsewhere (down to the shortest edge of T there).
+    /// In the end game of min_angle_deg (at most 4 faces below it, or the last pass of split_inside), where a
+    /// triangle would be given up: split it at a saddle of T that one of its geodesics bends at (splitting that
+    /// geodesic), or else at the curved vertex of T nearest its circumcentre (splitting the patch that holds it),
+    /// with edges of any length: such splits are finitely many, one per vertex of T.
     bool split_at_saddles = true;
     /// Last, where only triangles given up on are left below min_angle_deg (after the removals above), each is tried
     /// again, and from then on a triangle that nothing else mends gets a face split at a point well inside its patch
@@ -86,7 +87,7 @@ struct RefineResult {
     int removed_vertices = 0;          ///< vertices taken out (RefineOptions::remove_vertices)
     int moved_vertices = 0;            ///< vertices moved within their star, to raise a corner or narrow one
     int moves_onto_saddles = 0;        ///< of those, the moves onto a saddle of T that a geodesic bent at
-    int splits_at_saddles = 0;         ///< edge splits at a saddle of T that the edge's geodesic bent at
+    int splits_at_saddles = 0;         ///< splits at vertices of T (RefineOptions::split_at_saddles)
     int inside_splits = 0;             ///< face splits well inside a patch, the last resort (split_inside)
     int flips = 0;
     int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
