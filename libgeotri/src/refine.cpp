@@ -523,10 +523,14 @@ private:
     };
 
     /// Cuts f's corners above k_max_corner in two: splits the edge opposite each, the widest first, else inserts f's
-    /// circumcentre; only where every corner that changes is at least `bar` (and the smallest corner when refinement
-    /// began). Before the vertex cap, the bar is the minimum angle, so that mending them never makes work for the
-    /// minimum angle nor lowers it (with half of it as the bar for the new vertex's corners, triceratops ended at
-    /// 7.4 degrees instead of 11.0).
+    /// circumcentre, else splits f well inside its patch (split_inside(), from the widest corner first: a patch that
+    /// wraps around a bump of T often holds no circumcentre, and the geodesics from the far edge leave it); only
+    /// where every corner that changes is at least `bar` (and the smallest corner when refinement began). Before the
+    /// vertex cap, the bar is the minimum angle, so that mending them never makes work for the minimum angle nor
+    /// lowers it (with half of it as the bar for the new vertex's corners, triceratops ended at 7.4 degrees instead
+    /// of 11.0). The splits inside took the corners above 180 degrees left on the 320-face sweep at 30 degrees from
+    /// 40 to 25 (man 5 -> 0, lucy_100k 6 -> 2, footbones 2 -> 0), with the same angles; tried only in the last
+    /// resort's pass (split_inside_or_around()), they left 26.
     bool mend_wide_corners(FaceHandle f, double bar, std::set<std::array<int, 3>>* given_up = nullptr) {
         std::vector<std::pair<double, HalfedgeHandle>> wide;
         for (HalfedgeHandle h : halfedges_of(g_.coarse(), f)) {
@@ -547,6 +551,10 @@ private:
         const std::optional<Centre> centre = circumcentre(f);
         if (centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length, floor))
             return true;
+        if (options_.split_inside && split_inside(f, floor, min_length)) {
+            ++result_.inside_splits;
+            return true;
+        }
         // Else a vertex of f moved, where that narrows the widest corner of the faces it changes and keeps their
         // corners at least the floor (or what they were): the moves that raise the minimum angle may open such
         // corners, and the splits above then be refused (the lumbar spine at 25 degrees).

@@ -340,6 +340,33 @@ TEST(Refine, corners_above_180_degrees_are_cut_in_two) {
     }
 }
 
+// Traced as the pipeline does, triceratops at 25 degrees kept 5 corners above 180 degrees, where neither a split of
+// the opposite edge nor the circumcentre was kept: a patch that wraps around a bump of T often holds no circumcentre,
+// and the geodesics from the far edge leave it. A split well inside the patch, from the widest corner, cuts some of
+// them, with the angle reached as before.
+TEST(Refine, corners_above_180_degrees_are_cut_by_splits_inside_their_patch) {
+    if (test::shared_data_dir().empty())
+        GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
+                     << "': the real-mesh refinement test needs them";
+    const char* mesh = "stress/triceratops.off";
+    GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
+    flip_to_delaunay(g);
+    GeodesicTriangulation without = g, refined = g;
+    RefineResult r;
+    check_min_angle(g, 25.0, "triceratops, 320 faces", &r, {}, &refined);
+    RefineOptions options;
+    options.min_angle_deg = 25.0;
+    options.split_inside = false;
+    const RefineResult before = refine(without, options);
+    std::cout << "[ refine   ] corners above 180 degrees left: " << r.wide_corners_left << ", without splits inside "
+              << before.wide_corners_left << " (" << before.small_corners_left << " below the angle)\n";
+    EXPECT_TRUE(before.valid_after);
+    EXPECT_EQ(before.small_corners_left, 0);
+    EXPECT_GT(r.inside_splits, 0);
+    EXPECT_EQ(wide_corners(refined), r.wide_corners_left);
+    EXPECT_LT(r.wide_corners_left, before.wide_corners_left);
+}
+
 // On couplingdown and 42400-IDGH at 30 degrees, circumcentres alone cascade into the vertex cap (3116 and 3278 faces,
 // 288 and 457 corners left); moving vertices to the centroid of their stars first reaches the angle.
 TEST(Refine, vertex_moves_reach_30_degrees_where_circumcentres_alone_cascade) {

@@ -60,7 +60,8 @@ struct RefineOptions {
     /// (walked from a corner along its bisector, as far as the incentre of its intrinsic layout or half as far), or
     /// else inside a neighbour's patch, whose flips may then mend it. Such points are where the new geodesics most
     /// often stay inside the patch: on a very coarse G, or where geodesics bend at saddles of T, those from an edge's
-    /// midpoint or a circumcentre leave it.
+    /// midpoint or a circumcentre leave it. Such a split also cuts a corner above 180 degrees where neither a split
+    /// of the opposite edge nor the circumcentre does.
     bool split_inside = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
