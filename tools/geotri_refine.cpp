@@ -160,9 +160,9 @@ int run(tools::Tool& tool) {
     if (tool.verbose()) {
         const char* program = tool.program().c_str();
         std::fprintf(stderr,
-                     "%s: %zu -> %zu faces: %d edge splits, %d face splits (%d well inside a patch, the last "
-                     "resort), %d of both in the end game at vertices of T, %d vertices taken out, %d moved (%d onto "
-                     "saddles), %d flips, %d splits refused%s\n",
+                     "%s: %zu -> %zu faces: %d edge splits, %d face splits (%d well inside a patch), %d splits at "
+                     "vertices of T in the end game, %d vertices taken out, %d moved (%d onto saddles), %d flips, %d "
+                     "splits refused%s\n",
                      program, faces_before, g.coarse().n_faces(), r.edge_splits, r.face_splits, r.inside_splits,
                      r.splits_at_saddles, r.removed_vertices, r.moved_vertices, r.moves_onto_saddles, r.flips,
                      r.refused_splits, r.vertex_cap_reached ? "; stopped at the vertex cap (--max-new-vertices)" : "");

@@ -89,7 +89,7 @@ struct RefineResult {
     int moved_vertices = 0;            ///< vertices moved within their star, to raise a corner or narrow one
     int moves_onto_saddles = 0;        ///< of those, the moves onto a saddle of T that a geodesic bent at
     int splits_at_saddles = 0;         ///< splits at vertices of T (RefineOptions::split_at_saddles)
-    int inside_splits = 0;             ///< face splits well inside a patch, the last resort (split_inside)
+    int inside_splits = 0;             ///< face splits well inside a patch (RefineOptions::split_inside)
     int flips = 0;
     int exempt_corners = 0;            ///< corners below the minimum angle at cone points that force them
     int small_corners_left = 0;        ///< other corners below the minimum angle, where refinement gave up
