@@ -1215,7 +1215,6 @@ private:
         for (int cone : cones)
             if (split_at_vertex_of_t(f, cone)) {
                 ++result_.splits_at_saddles;
-                coarse_at_fine_vertex_.insert(cone);
                 add_short_edges_at(split_vertex_);
                 return true;
             }
@@ -1241,7 +1240,9 @@ private:
                     auto split = [&](GeodesicTriangulation& trial) {
                         return split_edge_at_point(trial, e, i, split_options(false));
                     };
-                    return try_split(split, keep_above_, 0.0, result_.edge_splits) == Tried::kept;
+                    if (try_split(split, keep_above_, 0.0, result_.edge_splits) != Tried::kept) return false;
+                    coarse_at_fine_vertex_.insert(cone);  // as insert_in_one_of() records it for a face split
+                    return true;
                 }
             }
         return insert_in_one_of(with_neighbours(f), SurfacePoint::at_vertex(cone),

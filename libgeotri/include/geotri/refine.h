@@ -83,7 +83,7 @@ struct RefineResult {
     bool valid_before = false, valid_after = false;
     std::vector<Violation> remaining;  ///< the violations left when G is invalid after (it should never be)
     int edge_splits = 0;               ///< bisections, and circumcentres that fell on an edge
-    int face_splits = 0;               ///< circumcentres inserted inside a patch, and inside_splits
+    int face_splits = 0;               ///< circumcentres and vertices of T inserted inside a patch, and inside_splits
     int refused_splits = 0;            ///< splits that split_edge() or split_face() refused (G kept as it was)
     int removed_vertices = 0;          ///< vertices taken out (RefineOptions::remove_vertices)
     int moved_vertices = 0;            ///< vertices moved within their star, to raise a corner or narrow one
