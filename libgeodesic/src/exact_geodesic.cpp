@@ -121,7 +121,7 @@ private:
 
     void reset();
     void relax_vertex(int v, double distance, Predecessor predecessor);
-    void add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent, int origin);
+    void add_window(int h, double b0, double b1, double sx, double sy, double sigma, int parent, int origin);
     void retire_beyond_reach(int h);
     bool wavefront_has_passed(int h) const;
     void close_edge(int h);
@@ -462,16 +462,16 @@ bool ExactGeodesic::Impl::trim_by_other_windows(Window& w) const {
     return true;
 }
 
-void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& source, double sigma, int parent,
+void ExactGeodesic::Impl::add_window(int h, double b0, double b1, double sx, double sy, double sigma, int parent,
                                      int origin) {
     const double length = mesh_.length(h);
     if (length <= 0.0) return;
     b0 = std::max(b0, 0.0);
     b1 = std::min(b1, length);
     if (!(b0 < b1)) return;
-    Window w{b0, b1, source.x(), source.y(), sigma, h, parent, origin, halfedge_state_[h].first_window};
-    if (max_distance_ < k_infinity && w.lower_bound() > max_distance_) return;  // a square root saved otherwise
-    if (w.next_on_edge == k_closed) {  // nowhere shorter than a path through an end vertex (close_passed_edges)
+    if (max_distance_ < k_infinity && Window::least_value(b0, b1, sx, sy, sigma) > max_distance_) return;
+    const int next_on_edge = halfedge_state_[h].first_window;
+    if (next_on_edge == k_closed) {  // nowhere shorter than a path through an end vertex (close_passed_edges)
         ++stats_.windows_not_made;
         return;
     }
@@ -480,15 +480,14 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, const Vec2& so
     // as well gave up to 30% fewer windows but cost more than it saved (bench/README.md: the 100k icosphere 1.23 ->
     // 0.82 s with the changes that came with it).
     const int id = static_cast<int>(windows_.size());
-    if (w.next_on_edge < 0) {
+    const Window& w = windows_.emplace_back(b0, b1, sx, sy, sigma, h, parent, origin, next_on_edge,
+                                            halfedge_state_[h].first_pending);
+    if (next_on_edge < 0) {
         touched_halfedges_.push_back(h);
         if (!keep_windows_) open_halfedges_.push_back(h);
     }
     halfedge_state_[h].first_window = id;
-    w.next_pending = halfedge_state_[h].first_pending;
     halfedge_state_[h].first_pending = id;
-    w.state = k_pending;
-    windows_.push_back(w);
     ++stats_.windows_created;
     const double tolerance = k_cover * length;
     if (b0 <= tolerance) relax_vertex(mesh_.tail(h), w.value_at(0.0), {Via::window, id});
@@ -582,7 +581,7 @@ void ExactGeodesic::Impl::free_retired_windows() {
         ++kept;
     }
     if (kept < size) {
-        windows_.resize(kept);
+        windows_.erase(windows_.begin() + kept, windows_.end());
         stats_.windows_freed += static_cast<std::size_t>(size - kept);
         auto moved = [&](int id) { return id < start ? id : moved_to_[id - start]; };
         for (int id = start; id < kept; ++id) {
@@ -612,9 +611,12 @@ void ExactGeodesic::Impl::free_retired_windows() {
 int ExactGeodesic::Impl::merge_with_siblings(int id) {
     // The same ray family reaches an edge in fragments, one per path of faces. Merging the pending fragments
     // before crossing the face keeps the window count near one per family and edge.
-    const Window w = windows_[id];
-    const double length = mesh_.length(w.halfedge);
-    const double source_tolerance = k_same_source * (length + w.source().norm() + w.sigma);
+    // The window's values one at a time: trimming has just stored some of them (see propagate_window).
+    const Window& w = windows_[id];
+    const double sx = w.sx, sy = w.sy, sigma = w.sigma;
+    const int h = w.halfedge, origin = w.origin, parent = w.parent;
+    const double length = mesh_.length(h);
+    const double source_tolerance = k_same_source * (length + std::sqrt(sx * sx + sy * sy) + sigma);
     const double gap_tolerance = k_cover * length;
     double b0 = w.b0, b1 = w.b1;
     std::vector<int>& pieces = merge_scratch_;
@@ -622,16 +624,16 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     // Fragments of one family arrive close together in time, so they sit near the front of the edge's list;
     // a bounded look keeps the cost constant on edges that many families cross.
     int looked = 0;
-    for (int s = halfedge_state_[w.halfedge].first_window; s >= 0 && looked < k_merge_lookahead;
+    for (int s = halfedge_state_[h].first_window; s >= 0 && looked < k_merge_lookahead;
          s = windows_[s].next_on_edge) {
         ++looked;
         if (windows_[s].state != k_pending || s == id) continue;
         const Window& other = windows_[s];
-        if (other.origin != w.origin || std::abs(other.sigma - w.sigma) > source_tolerance) continue;
+        if (other.origin != origin || std::abs(other.sigma - sigma) > source_tolerance) continue;
         // Most windows of one origin are other unfoldings of it, far apart: a square root is spared for those.
-        const Vec2 apart = other.source() - w.source();
-        if (std::max(std::abs(apart.x()), std::abs(apart.y())) > 2.0 * source_tolerance ||
-            apart.norm() > source_tolerance)
+        const double apart_x = other.sx - sx, apart_y = other.sy - sy;
+        if (std::max(std::abs(apart_x), std::abs(apart_y)) > 2.0 * source_tolerance ||
+            std::sqrt(apart_x * apart_x + apart_y * apart_y) > source_tolerance)
             continue;
         if (other.b0 > b1 + gap_tolerance || other.b1 < b0 - gap_tolerance) continue;
         windows_[s].state = k_merged;
@@ -641,19 +643,15 @@ int ExactGeodesic::Impl::merge_with_siblings(int id) {
     }
     if (pieces.size() == 1) return id;
     const int merged = static_cast<int>(windows_.size());
-    Window m = w;
-    m.b0 = b0;
-    m.b1 = b1;
-    m.next_on_edge = halfedge_state_[w.halfedge].first_window;
+    // It is the newest window of its edge and never pending: it crosses now, in place of its pieces.
+    Window& m = windows_.emplace_back(b0, b1, sx, sy, sigma, h, parent, origin, halfedge_state_[h].first_window, -1);
     m.state = k_propagated;
-    m.retired = false;  // it is the newest of its edge, whatever the piece it was copied from
     if (keep_windows_) {  // the pieces, for tracing paths back through them
         m.parent = -2 - static_cast<int>(merged_pieces_.size());
         merged_pieces_.push_back(static_cast<int>(pieces.size()));
         merged_pieces_.insert(merged_pieces_.end(), pieces.begin(), pieces.end());
     }
-    halfedge_state_[w.halfedge].first_window = merged;
-    windows_.push_back(m);
+    halfedge_state_[h].first_window = merged;
     stats_.windows_merged += pieces.size() - 1;
     return merged;
 }
@@ -683,51 +681,56 @@ void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge) {
         return;
     }
     const int id = may_merge ? merge_with_siblings(popped) : popped;
-    const Window w = windows_[id];  // a copy: adding children may reallocate windows_
+    // Copies, since adding children may reallocate windows_; and one value at a time, since trimming has just
+    // stored some of them and a copy of the whole window, loaded in wider pieces, would wait for those stores.
+    const Window& crossing = windows_[id];
+    const double b0 = crossing.b0, b1 = crossing.b1, sx = crossing.sx, sy = crossing.sy, sigma = crossing.sigma;
+    const int h = crossing.halfedge, origin = crossing.origin;
     ++stats_.windows_propagated;
     // A source beyond the edge line sends no ray into the face. One on the line (a vertex emitting across a
     // zero-area face) sends rays along the edge, which reached the end vertices when the window was added, and,
     // when it lies inside the window, rays into the whole face too: the general case below covers those.
-    if (w.sy > 0.0 || (w.sy == 0.0 && !(w.sx >= w.b0 && w.sx <= w.b1))) return;
+    if (sy > 0.0 || (sy == 0.0 && !(sx >= b0 && sx <= b1))) return;
 
-    const int h = w.halfedge;
+    // In scalars, as the frames' points are: 2-vectors built here went through memory and stalled when loaded back.
     const double length = mesh_.length(h);
-    const Vec2 apex = mesh_.apex(h);
-    const Vec2 source = w.source();
-    const Vec2 head(length, 0.0);
+    const double ax = mesh_.apex(h).x(), ay = mesh_.apex(h).y();
 
     // The ray from S through the apex crosses the edge at x_apex: rays left of it reach the edge tail→apex, rays
     // right of it the edge apex→head.
-    const double x_apex = source.x() + (apex.x() - source.x()) * (-source.y()) / (apex.y() - source.y());
+    const double x_apex = sx + (ax - sx) * (-sy) / (ay - sy);
     const double tolerance = k_cover * length;
-    if (x_apex >= w.b0 - tolerance && x_apex <= w.b1 + tolerance)
-        relax_vertex(mesh_.tail(Mesh::prev(h)), w.sigma + (apex - source).norm(), {Via::window, id});
+    if (x_apex >= b0 - tolerance && x_apex <= b1 + tolerance) {
+        const double dx = ax - sx, dy = ay - sy;
+        relax_vertex(mesh_.tail(Mesh::prev(h)), sigma + std::sqrt(dx * dx + dy * dy), {Via::window, id});
+    }
 
-    if (w.b0 < x_apex) {  // child on the edge tail→apex, seen from the neighbour across it
+    if (b0 < x_apex) {  // child on the edge tail→apex, seen from the neighbour across it
         const int child = mesh_.twin(Mesh::prev(h));
         const double apex_norm = mesh_.length(Mesh::prev(h));  // the length of apex, and of child, which ends there
         if (child >= 0 && apex_norm > 0.0) {
-            const Vec2 e = apex / apex_norm;
-            const double hi = std::min(w.b1, x_apex);
-            double u0 = w.b0 == 0.0 ? 0.0 : detail::line_crossing(source, Vec2(w.b0, 0.0), Vec2::Zero(), e);
-            double u1 = hi == x_apex ? apex_norm : detail::line_crossing(source, Vec2(hi, 0.0), Vec2::Zero(), e);
+            const double ex = ax / apex_norm, ey = ay / apex_norm;  // the child's frame: origin at the tail, x along e
+            const double hi = std::min(b1, x_apex);
+            double u0 = b0 == 0.0 ? 0.0 : detail::ray_crossing(sx, sy, b0, 0.0, 0.0, ex, ey);
+            double u1 = hi == x_apex ? apex_norm : detail::ray_crossing(sx, sy, hi, 0.0, 0.0, ex, ey);
             if (!std::isfinite(u0)) u0 = 0.0;
             if (!std::isfinite(u1)) u1 = apex_norm;
-            add_window(child, u0, u1, detail::to_frame(source, Vec2::Zero(), e), w.sigma, id, w.origin);
+            add_window(child, u0, u1, sx * ex + sy * ey, ex * sy - ey * sx, sigma, id, origin);
         }
     }
-    if (x_apex < w.b1) {  // child on the edge apex→head
+    if (x_apex < b1) {  // child on the edge apex→head
         const int child = mesh_.twin(Mesh::next(h));
-        const Vec2 along = head - apex;
         const double along_norm = mesh_.length(Mesh::next(h));
         if (child >= 0 && along_norm > 0.0) {
-            const Vec2 e = along / along_norm;
-            const double lo = std::max(w.b0, x_apex);
-            double v0 = lo == x_apex ? 0.0 : detail::line_crossing(source, Vec2(lo, 0.0), apex, e);
-            double v1 = w.b1 == length ? along_norm : detail::line_crossing(source, Vec2(w.b1, 0.0), apex, e);
+            // The child's frame: origin at the apex, x along e, towards the head.
+            const double ex = (length - ax) / along_norm, ey = (0.0 - ay) / along_norm;
+            const double lo = std::max(b0, x_apex);
+            double v0 = lo == x_apex ? 0.0 : detail::ray_crossing(sx, sy, lo, ax, ay, ex, ey);
+            double v1 = b1 == length ? along_norm : detail::ray_crossing(sx, sy, b1, ax, ay, ex, ey);
             if (!std::isfinite(v0)) v0 = 0.0;
             if (!std::isfinite(v1)) v1 = along_norm;
-            add_window(child, v0, v1, detail::to_frame(source, apex, e), w.sigma, id, w.origin);
+            const double rx = sx - ax, ry = sy - ay;
+            add_window(child, v0, v1, rx * ex + ry * ey, ex * ry - ey * rx, sigma, id, origin);
         }
     }
 }
@@ -822,7 +825,7 @@ void ExactGeodesic::Impl::emit_from_vertex(int v) {
             // that edge at v's own position, so v emits from that point into the face beyond, all of it (more
             // than the shadow is only more work, never wrong).
             if (apex.x() > 0.0 && apex.x() < length)
-                add_window(beyond, 0.0, mesh_.length(beyond), Vec2(length - apex.x(), 0.0), d, -1, v);
+                add_window(beyond, 0.0, mesh_.length(beyond), length - apex.x(), 0.0, d, -1, v);
             continue;
         }
         auto hit = [&](double angle) {
@@ -834,8 +837,7 @@ void ExactGeodesic::Impl::emit_from_vertex(int v) {
         };
         const double x0 = a0 == 0.0 ? 0.0 : hit(a0);
         const double x1 = a1 == corner ? length : hit(a1);
-        const Vec2 source(length - apex.x(), -apex.y());
-        add_window(beyond, (length - x1) * scale, (length - x0) * scale, source, d, -1, v);
+        add_window(beyond, (length - x1) * scale, (length - x0) * scale, length - apex.x(), -apex.y(), d, -1, v);
     }
 }
 
@@ -853,8 +855,7 @@ void ExactGeodesic::Impl::seed_from_point(const SurfacePoint& p, int source_inde
                                    (mesh_.tail(h) == p.edge_v1 && mesh_.head(h) == p.edge_v0));
             if (own_edge) continue;
             const Vec2 s = layout(h, p);
-            add_window(beyond, 0.0, mesh_.length(beyond), Vec2(mesh_.length(h) - s.x(), -s.y()), 0.0, -1,
-                       -1 - source_index);
+            add_window(beyond, 0.0, mesh_.length(beyond), mesh_.length(h) - s.x(), -s.y(), 0.0, -1, -1 - source_index);
         }
     }
 }

@@ -16,6 +16,13 @@ constexpr double k_infinity = std::numeric_limits<double>::infinity();
 
 /// Windows are looked up by id all over memory (edge lists, the queue): one cache line each, with room for the state.
 struct alignas(64) Window {
+    // Built in place, field by field, by its constructor: a window assembled on the stack and then copied was
+    // loaded back in wider pieces than it was stored in, which stalled every copy.
+    Window(double b0_, double b1_, double sx_, double sy_, double sigma_, int halfedge_, int parent_, int origin_,
+           int next_on_edge_, int next_pending_)
+        : b0(b0_), b1(b1_), sx(sx_), sy(sy_), sigma(sigma_), halfedge(halfedge_), parent(parent_), origin(origin_),
+          next_on_edge(next_on_edge_), next_pending(next_pending_) {}
+
     double b0;
     double b1;
     double sx;
@@ -39,7 +46,8 @@ struct alignas(64) Window {
     double distance_to(const Eigen::Vector2d& p) const { return sigma + (p - source()).norm(); }
 
     /// The least distance that this window gives anywhere: nothing propagated from it can be nearer.
-    double lower_bound() const {
+    double lower_bound() const { return least_value(b0, b1, sx, sy, sigma); }
+    static double least_value(double b0, double b1, double sx, double sy, double sigma) {
         const double dx = sx < b0 ? b0 - sx : (sx > b1 ? sx - b1 : 0.0);
         return sigma + std::sqrt(dx * dx + sy * sy);
     }
@@ -105,19 +113,13 @@ inline int profile_crossings(const EdgeProfile& a, const EdgeProfile& b, double 
 
 inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-/// The parameter u at which the line through `from` and `through` meets the line P + u·e (e a unit vector).
-/// Not finite when the two lines are parallel.
-inline double line_crossing(const Eigen::Vector2d& from, const Eigen::Vector2d& through, const Eigen::Vector2d& p,
-                            const Eigen::Vector2d& e) {
-    const Eigen::Vector2d d = through - from;
-    return cross(from - p, d) / cross(e, d);
-}
-
-/// Coordinates of q in the frame whose origin is `origin` and whose x axis is the unit vector e (y axis e rotated
-/// by +90°).
-inline Eigen::Vector2d to_frame(const Eigen::Vector2d& q, const Eigen::Vector2d& origin, const Eigen::Vector2d& e) {
-    const Eigen::Vector2d r = q - origin;
-    return {r.dot(e), cross(e, r)};
+/// The parameter u at which the ray from the source (sx, sy) through the edge point (x, 0) meets the line
+/// (px, py) + u·(ex, ey), with (ex, ey) a unit vector. Not finite when the two are parallel. In scalars: built as
+/// 2-vectors, (x, 0) went through memory in two halves and was loaded back whole, a stall at every call.
+inline double ray_crossing(double sx, double sy, double x, double px, double py, double ex, double ey) {
+    const double dx = x - sx, dy = 0.0 - sy;
+    const double ax = sx - px, ay = sy - py;
+    return (ax * dy - ay * dx) / (ex * dy - ey * dx);
 }
 
 }  // namespace geotri::geodesic::detail
