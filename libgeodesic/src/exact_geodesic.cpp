@@ -502,7 +502,7 @@ void ExactGeodesic::Impl::add_window(int h, double b0, double b1, double sx, dou
     }
     // The estimate adds to the bound: where the bound alone is no lower than the halfedge's queued key, so is the
     // key, and the estimate (a loop over the goals) is not needed.
-    const double bound = w.lower_bound();
+    const double bound = Window::least_value(b0, b1, sx, sy, sigma);
     if (!(bound < halfedge_state_[h].queued_key)) return;
     const double key = bound + estimate_left(w);
     if (key < halfedge_state_[h].queued_key) {

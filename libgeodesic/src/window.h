@@ -45,10 +45,10 @@ struct alignas(64) Window {
 
     double distance_to(const Eigen::Vector2d& p) const { return sigma + (p - source()).norm(); }
 
-    /// The least distance that this window gives anywhere: nothing propagated from it can be nearer.
-    double lower_bound() const { return least_value(b0, b1, sx, sy, sigma); }
+    /// The least distance that a window with these values gives anywhere: nothing propagated from it can be nearer.
     static double least_value(double b0, double b1, double sx, double sy, double sigma) {
-        const double dx = sx < b0 ? b0 - sx : (sx > b1 ? sx - b1 : 0.0);
+        if (sx >= b0 && sx <= b1) return sigma + std::abs(sy);  // what the square root gives, exactly, without it
+        const double dx = sx < b0 ? b0 - sx : sx - b1;
         return sigma + std::sqrt(dx * dx + sy * sy);
     }
 
