@@ -715,7 +715,8 @@ void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge) {
             double u1 = hi == x_apex ? apex_norm : detail::ray_crossing(sx, sy, hi, 0.0, 0.0, ex, ey);
             if (!std::isfinite(u0)) u0 = 0.0;
             if (!std::isfinite(u1)) u1 = apex_norm;
-            add_window(child, u0, u1, sx * ex + sy * ey, ex * sy - ey * sx, sigma, id, origin);
+            const detail::FramePoint source = detail::to_frame(sx, sy, 0.0, 0.0, ex, ey);
+            add_window(child, u0, u1, source.x, source.y, sigma, id, origin);
         }
     }
     if (x_apex < b1) {  // child on the edge apex→head
@@ -729,8 +730,8 @@ void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge) {
             double v1 = b1 == length ? along_norm : detail::ray_crossing(sx, sy, b1, ax, ay, ex, ey);
             if (!std::isfinite(v0)) v0 = 0.0;
             if (!std::isfinite(v1)) v1 = along_norm;
-            const double rx = sx - ax, ry = sy - ay;
-            add_window(child, v0, v1, rx * ex + ry * ey, ex * ry - ey * rx, sigma, id, origin);
+            const detail::FramePoint source = detail::to_frame(sx, sy, ax, ay, ex, ey);
+            add_window(child, v0, v1, source.x, source.y, sigma, id, origin);
         }
     }
 }

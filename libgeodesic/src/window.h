@@ -113,6 +113,17 @@ inline int profile_crossings(const EdgeProfile& a, const EdgeProfile& b, double 
 
 inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+/// The coordinates of the point (qx, qy) in the frame whose origin is (px, py) and whose x axis is the unit vector
+/// (ex, ey), its y axis that turned by +90°.
+struct FramePoint {
+    double x;
+    double y;
+};
+inline FramePoint to_frame(double qx, double qy, double px, double py, double ex, double ey) {
+    const double rx = qx - px, ry = qy - py;
+    return {rx * ex + ry * ey, ex * ry - ey * rx};
+}
+
 /// The parameter u at which the ray from the source (sx, sy) through the edge point (x, 0) meets the line
 /// (px, py) + u·(ex, ey), with (ex, ey) a unit vector. Not finite when the two are parallel. In scalars: built as
 /// 2-vectors, (x, 0) went through memory in two halves and was loaded back whole, a stall at every call.
