@@ -127,10 +127,10 @@ private:
     void close_edge(int h);
     void close_passed_edges();
     void free_retired_windows();
-    bool trim_by_end_vertices(Window& w) const;
+    bool trim_by_end_vertices(Window& w, detail::EndValues& ends) const;
     struct ComparedWindows;
     void collect_compared(int list, int self, double length, bool mirrored, ComparedWindows& out) const;
-    bool trim_by_other_windows(Window& w) const;
+    bool trim_by_other_windows(Window& w, detail::EndValues& ends) const;
     void propagate_window(int popped, bool may_merge);
     int merge_with_siblings(int id);
     int piece_covering(int id, double x) const;
@@ -347,7 +347,7 @@ double vertex_takeover(double sx, double sy, double sigma, double d, double slac
 
 }  // namespace
 
-bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w) const {
+bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w, detail::EndValues& ends) const {
     // |S - x| - |tail - x| never increases as x moves away from the tail, so the part where the tail's path beats
     // the window is an interval that starts at the tail; likewise for the head. Such a part cannot be on any
     // shortest path (the vertex's path is shorter, or, for a convex vertex, shorter still around it), so it goes.
@@ -359,10 +359,12 @@ bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w) const {
     const double slack = k_margin * (w.sigma + w.source().norm() + length);
     const double d_tail = distance_[mesh_.tail(h)];
     const double d_head = distance_[mesh_.head(h)];
-    if (d_tail == k_infinity && d_head == k_infinity) return w.b0 < w.b1;
-    // The window's values at its ends, each computed once (square roots are not cheap) and again if the end moves.
+    // The window's values at its ends, each computed once (square roots are not cheap) and again if the end moves;
+    // trim_by_other_windows needs them too.
     double at_b0 = w.value_at(w.b0);
-    const double at_b1 = w.value_at(w.b1);
+    double at_b1 = w.value_at(w.b1);
+    ends = {at_b0, at_b1};
+    if (d_tail == k_infinity && d_head == k_infinity) return w.b0 < w.b1;
     if (d_tail < k_infinity) {
         if (at_b1 > d_tail + w.b1 + slack) return false;
         if (at_b0 > d_tail + w.b0 + slack) {
@@ -377,25 +379,31 @@ bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w) const {
         if (at_b0 > d_head + (length - w.b0) + slack) return false;
         if (at_b1 > d_head + (length - w.b1) + slack) {
             const double y = vertex_takeover(length - w.sx, w.sy, w.sigma, d_head, slack);
-            if (length - y > w.b0 && length - y < w.b1) w.b1 = length - y;
+            if (length - y > w.b0 && length - y < w.b1) {
+                w.b1 = length - y;
+                at_b1 = w.value_at(w.b1);
+            }
         }
     }
+    ends = {at_b0, at_b1};
     return w.b0 < w.b1;
 }
 
 namespace {
 
-// Cuts from the ends of [w.b0, w.b1] the runs where `other` (a real path length to the edge's points, defined on
-// [o0, o1]) beats w by more than `slack`. Only the ends can go: a window stays one interval. Returns false when
-// nothing is left.
-bool trim_ends_against(Window& w, const EdgeProfile& other, double o0, double o1, double slack) {
-    const double lo = std::max(w.b0, o0), hi = std::min(w.b1, o1);
-    if (!(lo < hi)) return true;
+// Cuts from the ends of the nonempty [w.b0, w.b1] the runs where `other` (a real path length to the edge's points,
+// defined on [o0, o1]) beats w by more than `slack`. Only the ends can go: a window stays one interval, and only an
+// end where `other` is already shorter: that test is cheap, the crossings are not. Returns false when nothing is
+// left; otherwise `ends` holds w's values at its ends, as it did on entry.
+bool trim_ends_against(Window& w, detail::EndValues& ends, const EdgeProfile& other, double o0, double o1,
+                       double slack) {
+    // Without branches, most of whose outcomes the processor could not predict: both values are computed, the one
+    // not needed too. Where an end lies in [o0, o1], the intervals overlap, since w's is not empty.
+    const bool from_start = (o0 <= w.b0) & (w.b0 < o1) & (ends.at_b0 > other.at(w.b0) + slack);
+    const bool from_end = (o0 < w.b1) & (w.b1 <= o1) & (ends.at_b1 > other.at(w.b1) + slack);
+    if (!(from_start | from_end)) return true;
     const EdgeProfile mine{w.sx, w.sy, w.sigma};
-    // Only an end of w where `other` is already shorter can go: that test is cheap, the crossings are not.
-    const bool from_start = o0 <= w.b0 && mine.at(w.b0) > other.at(w.b0) + slack;
-    const bool from_end = o1 >= w.b1 && mine.at(w.b1) > other.at(w.b1) + slack;
-    if (!from_start && !from_end) return true;
+    const double lo = std::max(w.b0, o0), hi = std::min(w.b1, o1);
     double cuts[4] = {lo, 0.0, 0.0, 0.0};
     const int roots = profile_crossings(mine, other, lo, hi, cuts + 1);
     cuts[roots + 1] = hi;
@@ -413,6 +421,8 @@ bool trim_ends_against(Window& w, const EdgeProfile& other, double o0, double o1
     if (from_end)
         for (int i = roots; i >= 0 && worse(cuts[i], cuts[i + 1]); --i) b1 = cuts[i];
     if (!(b0 < b1)) return false;
+    if (b0 != w.b0) ends.at_b0 = mine.at(b0);
+    if (b1 != w.b1) ends.at_b1 = mine.at(b1);
     w.b0 = b0;
     w.b1 = b1;
     return true;
@@ -441,7 +451,7 @@ void ExactGeodesic::Impl::collect_compared(int list, int self, double length, bo
     }
 }
 
-bool ExactGeodesic::Impl::trim_by_other_windows(Window& w) const {
+bool ExactGeodesic::Impl::trim_by_other_windows(Window& w, detail::EndValues& ends) const {
     // Where another window on the same edge (either side) is shorter than w, no shortest path goes through w there:
     // it could take the other window's path to the same point instead. The other window keeps its part, so coverage
     // is never lost; both must differ by more than `slack`, so that two tied windows never remove each other.
@@ -455,7 +465,8 @@ bool ExactGeodesic::Impl::trim_by_other_windows(Window& w) const {
         if (!(std::max(w.b0, compared->lo) < std::min(w.b1, compared->hi))) continue;
         for (int i = 0; i < compared->count; ++i) {
             const ComparedWindows::Entry& other = compared->entries[i];
-            if (!trim_ends_against(w, other.profile, other.o0, other.o1, k_margin * (scale + other.profile.sigma)))
+            if (!trim_ends_against(w, ends, other.profile, other.o0, other.o1,
+                                   k_margin * (scale + other.profile.sigma)))
                 return false;
         }
     }
@@ -676,7 +687,8 @@ int ExactGeodesic::Impl::piece_covering(int id, double x) const {
 void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge) {
     if (windows_[popped].state != k_pending) return;  // merged into another window
     windows_[popped].state = k_propagated;
-    if (!trim_by_end_vertices(windows_[popped]) || !trim_by_other_windows(windows_[popped])) {
+    detail::EndValues ends;
+    if (!trim_by_end_vertices(windows_[popped], ends) || !trim_by_other_windows(windows_[popped], ends)) {
         ++stats_.windows_pruned;
         return;
     }

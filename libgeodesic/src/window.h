@@ -71,6 +71,12 @@ struct EdgeProfile {
     }
 };
 
+/// A window's values at the ends of its interval, as trimming moves them.
+struct EndValues {
+    double at_b0;
+    double at_b1;
+};
+
 /// The points of the open interval (lo, hi) where two profiles may be equal, sorted: at most two, the real roots of
 /// the quadratic that squaring the equation gives (squaring may add a root where they differ; callers test the
 /// sign between the roots, so an extra root only splits an interval of one sign).
