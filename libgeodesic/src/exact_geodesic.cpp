@@ -1037,8 +1037,13 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
         ++stats_.queue_pops;
         // The windows of the next halfedge to pop have waited since they were made, so they are out of cache:
         // fetch the first while this item is processed.
-        if (!queue_.empty() && queue_.top_item() >= 0 && halfedge_state_[queue_.top_item()].first_pending >= 0)
-            prefetch(&windows_[halfedge_state_[queue_.top_item()].first_pending]);
+        // Its face's records too, which its first window reads at once.
+        if (!queue_.empty() && queue_.top_item() >= 0) {
+            const int top = queue_.top_item();
+            prefetch(&mesh_.apex(Mesh::prev(top)));
+            prefetch(&mesh_.apex(Mesh::next(top)));
+            if (halfedge_state_[top].first_pending >= 0) prefetch(&windows_[halfedge_state_[top].first_pending]);
+        }
         if (goals_.empty() && key > max_distance_) {  // a goal-directed key bounds more than the distance
             stats_.stopped_early = true;
             break;
@@ -1066,6 +1071,14 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             // Nothing comes to the twin's list meanwhile. The halfedge's own list changes at its front only: its
             // first windows are trimmed as they cross, and a merged window goes before them. So from the place
             // after the first k_compare_lookahead on, the windows compared stay the same until a merge.
+            // The halfedges that the batch's children go to, read first by the first child, which otherwise waited.
+            // (A halfedge's record, its length among them, lies in one cache line with its apex.)
+            for (int side : {Mesh::prev(h), Mesh::next(h)}) {
+                const int child = mesh_.twin(side);
+                if (child < 0) continue;
+                prefetch(&mesh_.apex(child));
+                prefetch(&halfedge_state_[child]);
+            }
             const double length = mesh_.length(h);
             collect_compared(mesh_.twin(h), -1, length, true, twin_compared_);
             int compared_front = -1;
