@@ -131,7 +131,9 @@ private:
     struct ComparedWindows;
     void collect_compared(int list, int self, double length, bool mirrored, ComparedWindows& out) const;
     bool trim_by_other_windows(Window& w, detail::EndValues& ends) const;
-    void propagate_window(int popped, bool may_merge);
+    struct FaceCrossing;
+    FaceCrossing face_crossing(int h) const;
+    void propagate_window(int popped, bool may_merge, const FaceCrossing& face);
     int merge_with_siblings(int id);
     int piece_covering(int id, double x) const;
     void emit_from_vertex(int v);
@@ -201,6 +203,19 @@ private:
         double lo = k_infinity, hi = -k_infinity;  // the hull of their intervals
     };
     ComparedWindows own_compared_, twin_compared_;
+    /// What every window of a halfedge's batch needs of the face that it crosses, in the halfedge's frame, and of
+    /// the frames of the two edges beyond: the same for the whole batch, whose divisions cost as much as a window's
+    /// own did.
+    struct FaceCrossing {
+        double length, ax, ay;  // the halfedge's length and the apex
+        int apex_vertex;
+        struct Side {
+            int child = -1;       // the halfedge beyond, whose face a child window crosses next; -1 if none
+            double length = 0.0;  // its length
+            double ex = 0.0, ey = 0.0;  // its direction, a unit vector in the halfedge's frame
+        };
+        Side left, right;  // beyond the edges tail→apex (origin at the tail) and apex→head (origin at the apex)
+    };
     bool keep_windows_ = true;
     std::size_t windows_to_free_at_ = k_min_windows_to_free;  // without keep_windows: free once there are this many
     int lowest_retired_ = std::numeric_limits<int>::max();  // the first window retired since the last pass
@@ -684,7 +699,23 @@ int ExactGeodesic::Impl::piece_covering(int id, double x) const {
     return best;
 }
 
-void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge) {
+ExactGeodesic::Impl::FaceCrossing ExactGeodesic::Impl::face_crossing(int h) const {
+    FaceCrossing face;
+    face.length = mesh_.length(h);
+    face.ax = mesh_.apex(h).x();
+    face.ay = mesh_.apex(h).y();
+    face.apex_vertex = mesh_.tail(Mesh::prev(h));
+    const double apex_norm = mesh_.length(Mesh::prev(h));  // the length of the apex vector, and of the edge
+    const int left = mesh_.twin(Mesh::prev(h));
+    if (left >= 0 && apex_norm > 0.0) face.left = {left, apex_norm, face.ax / apex_norm, face.ay / apex_norm};
+    const double along_norm = mesh_.length(Mesh::next(h));
+    const int right = mesh_.twin(Mesh::next(h));
+    if (right >= 0 && along_norm > 0.0)
+        face.right = {right, along_norm, (face.length - face.ax) / along_norm, (0.0 - face.ay) / along_norm};
+    return face;
+}
+
+void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge, const FaceCrossing& face) {
     if (windows_[popped].state != k_pending) return;  // merged into another window
     windows_[popped].state = k_propagated;
     detail::EndValues ends;
@@ -697,7 +728,7 @@ void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge) {
     // stored some of them and a copy of the whole window, loaded in wider pieces, would wait for those stores.
     const Window& crossing = windows_[id];
     const double b0 = crossing.b0, b1 = crossing.b1, sx = crossing.sx, sy = crossing.sy, sigma = crossing.sigma;
-    const int h = crossing.halfedge, origin = crossing.origin;
+    const int origin = crossing.origin;
     ++stats_.windows_propagated;
     // A source beyond the edge line sends no ray into the face. One on the line (a vertex emitting across a
     // zero-area face) sends rays along the edge, which reached the end vertices when the window was added, and,
@@ -705,8 +736,7 @@ void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge) {
     if (sy > 0.0 || (sy == 0.0 && !(sx >= b0 && sx <= b1))) return;
 
     // In scalars, as the frames' points are: 2-vectors built here went through memory and stalled when loaded back.
-    const double length = mesh_.length(h);
-    const double ax = mesh_.apex(h).x(), ay = mesh_.apex(h).y();
+    const double length = face.length, ax = face.ax, ay = face.ay;
 
     // The ray from S through the apex crosses the edge at x_apex: rays left of it reach the edge tail→apex, rays
     // right of it the edge apex→head.
@@ -714,37 +744,28 @@ void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge) {
     const double tolerance = k_cover * length;
     if (x_apex >= b0 - tolerance && x_apex <= b1 + tolerance) {
         const double dx = ax - sx, dy = ay - sy;
-        relax_vertex(mesh_.tail(Mesh::prev(h)), sigma + std::sqrt(dx * dx + dy * dy), {Via::window, id});
+        relax_vertex(face.apex_vertex, sigma + std::sqrt(dx * dx + dy * dy), {Via::window, id});
     }
 
-    if (b0 < x_apex) {  // child on the edge tail→apex, seen from the neighbour across it
-        const int child = mesh_.twin(Mesh::prev(h));
-        const double apex_norm = mesh_.length(Mesh::prev(h));  // the length of apex, and of child, which ends there
-        if (child >= 0 && apex_norm > 0.0) {
-            const double ex = ax / apex_norm, ey = ay / apex_norm;  // the child's frame: origin at the tail, x along e
-            const double hi = std::min(b1, x_apex);
-            double u0 = b0 == 0.0 ? 0.0 : detail::ray_crossing(sx, sy, b0, 0.0, 0.0, ex, ey);
-            double u1 = hi == x_apex ? apex_norm : detail::ray_crossing(sx, sy, hi, 0.0, 0.0, ex, ey);
-            if (!std::isfinite(u0)) u0 = 0.0;
-            if (!std::isfinite(u1)) u1 = apex_norm;
-            const detail::FramePoint source = detail::to_frame(sx, sy, 0.0, 0.0, ex, ey);
-            add_window(child, u0, u1, source.x, source.y, sigma, id, origin);
-        }
+    if (b0 < x_apex && face.left.child >= 0) {  // child on the edge tail→apex, seen from the neighbour across it
+        const FaceCrossing::Side& left = face.left;  // the child's frame: origin at the tail, x along the edge
+        const double hi = std::min(b1, x_apex);
+        double u0 = b0 == 0.0 ? 0.0 : detail::ray_crossing(sx, sy, b0, 0.0, 0.0, left.ex, left.ey);
+        double u1 = hi == x_apex ? left.length : detail::ray_crossing(sx, sy, hi, 0.0, 0.0, left.ex, left.ey);
+        if (!std::isfinite(u0)) u0 = 0.0;
+        if (!std::isfinite(u1)) u1 = left.length;
+        const detail::FramePoint source = detail::to_frame(sx, sy, 0.0, 0.0, left.ex, left.ey);
+        add_window(left.child, u0, u1, source.x, source.y, sigma, id, origin);
     }
-    if (x_apex < b1) {  // child on the edge apex→head
-        const int child = mesh_.twin(Mesh::next(h));
-        const double along_norm = mesh_.length(Mesh::next(h));
-        if (child >= 0 && along_norm > 0.0) {
-            // The child's frame: origin at the apex, x along e, towards the head.
-            const double ex = (length - ax) / along_norm, ey = (0.0 - ay) / along_norm;
-            const double lo = std::max(b0, x_apex);
-            double v0 = lo == x_apex ? 0.0 : detail::ray_crossing(sx, sy, lo, ax, ay, ex, ey);
-            double v1 = b1 == length ? along_norm : detail::ray_crossing(sx, sy, b1, ax, ay, ex, ey);
-            if (!std::isfinite(v0)) v0 = 0.0;
-            if (!std::isfinite(v1)) v1 = along_norm;
-            const detail::FramePoint source = detail::to_frame(sx, sy, ax, ay, ex, ey);
-            add_window(child, v0, v1, source.x, source.y, sigma, id, origin);
-        }
+    if (x_apex < b1 && face.right.child >= 0) {  // child on the edge apex→head
+        const FaceCrossing::Side& right = face.right;  // the child's frame: origin at the apex, x towards the head
+        const double lo = std::max(b0, x_apex);
+        double v0 = lo == x_apex ? 0.0 : detail::ray_crossing(sx, sy, lo, ax, ay, right.ex, right.ey);
+        double v1 = b1 == length ? right.length : detail::ray_crossing(sx, sy, b1, ax, ay, right.ex, right.ey);
+        if (!std::isfinite(v0)) v0 = 0.0;
+        if (!std::isfinite(v1)) v1 = right.length;
+        const detail::FramePoint source = detail::to_frame(sx, sy, ax, ay, right.ex, right.ey);
+        add_window(right.child, v0, v1, source.x, source.y, sigma, id, origin);
     }
 }
 
@@ -1079,7 +1100,8 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
                 prefetch(&mesh_.apex(child));
                 prefetch(&halfedge_state_[child]);
             }
-            const double length = mesh_.length(h);
+            const FaceCrossing face = face_crossing(h);
+            const double length = face.length;
             collect_compared(mesh_.twin(h), -1, length, true, twin_compared_);
             int compared_front = -1;
             while (id >= 0) {
@@ -1089,7 +1111,7 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
                     collect_compared(h, id, length, false, own_compared_);
                     compared_front = first;
                 }
-                propagate_window(id, next >= 0 && place + 1 < k_merge_lookahead);
+                propagate_window(id, next >= 0 && place + 1 < k_merge_lookahead, face);
                 place += halfedge_state_[h].first_window == first ? 1 : 2;  // a merged window came first
                 id = next;
             }
