@@ -33,8 +33,6 @@ struct alignas(64) Window {
     int origin;        ///< the emitting vertex (>= 0) or -1 - source index; shared by every descendant
     int next_on_edge;  ///< next window on the same halfedge, or -1
     int next_pending = -1;  ///< next window on the same halfedge still to cross its face, or -1
-    unsigned char state = 0;  ///< the propagation's bookkeeping (pending, propagated, merged)
-    bool retired = false;     ///< pushed beyond the recent windows of its edge that are ever compared again
 
     Eigen::Vector2d source() const { return {sx, sy}; }
 
