@@ -370,6 +370,7 @@ double vertex_takeover(double sx, double sy, double sigma, double d, double slac
 
 }  // namespace
 
+// Sets `ends` to w's values at its ends as trimmed, but where w.sy == 0, which trim_by_other_windows leaves alone.
 bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w, detail::EndValues& ends) const {
     // |S - x| - |tail - x| never increases as x moves away from the tail, so the part where the tail's path beats
     // the window is an interval that starts at the tail; likewise for the head. Such a part cannot be on any
@@ -1108,9 +1109,6 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             // none from the list's k_merge_lookahead - 1st place on; most windows of a batch are there (the search
             // took 11% of the instructions on a noisy sphere, for 1 merge in 1000 windows).
             int place = 0;  // in the halfedge's list
-            // Nothing comes to the twin's list meanwhile. The halfedge's own list changes at its front only: its
-            // first windows are trimmed as they cross, and a merged window goes before them. So from the place
-            // after the first k_compare_lookahead on, the windows compared stay the same until a merge.
             // The halfedges that the batch's children go to, read first by the first child, which otherwise waited.
             // (A halfedge's record, its length among them, lies in one cache line with its apex.)
             for (int side : {Mesh::prev(h), Mesh::next(h)}) {
@@ -1121,6 +1119,9 @@ void ExactGeodesic::Impl::propagate(const std::vector<SurfacePoint>& sources, co
             }
             const FaceCrossing face = face_crossing(h);
             const double length = face.length;
+            // Nothing comes to the twin's list meanwhile. The halfedge's own list changes at its front only: its
+            // first windows are trimmed as they cross, and a merged window goes before them. So from the place
+            // after the first k_compare_lookahead on, the windows compared stay the same until a merge.
             collect_compared(mesh_.twin(h), -1, length, true, twin_compared_);
             int compared_front = -1;
             while (id >= 0) {

@@ -14,7 +14,8 @@ namespace geotri::geodesic::detail {
 
 constexpr double k_infinity = std::numeric_limits<double>::infinity();
 
-/// Windows are looked up by id all over memory (edge lists, the queue): one cache line each, with room for the state.
+/// Windows are looked up by id all over memory (edge lists, the queue): one cache line each. Where each stands in
+/// the propagation (pending, propagated, merged, retired) is kept apart, in the propagation's window flags.
 struct alignas(64) Window {
     // Built in place, field by field, by its constructor: a window assembled on the stack and then copied was
     // loaded back in wider pieces than it was stored in, which stalled every copy.
