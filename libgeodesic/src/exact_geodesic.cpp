@@ -385,31 +385,27 @@ bool ExactGeodesic::Impl::trim_by_end_vertices(Window& w, detail::EndValues& end
     const double d_head = distance_[mesh_.head(h)];
     // The window's values at its ends, each computed once (square roots are not cheap) and again if the end moves;
     // trim_by_other_windows needs them too.
-    double at_b0 = w.value_at(w.b0);
-    double at_b1 = w.value_at(w.b1);
-    ends = {at_b0, at_b1};
-    if (d_tail == k_infinity && d_head == k_infinity) return w.b0 < w.b1;
+    ends = {w.value_at(w.b0), w.value_at(w.b1)};
     if (d_tail < k_infinity) {
-        if (at_b1 > d_tail + w.b1 + slack) return false;
-        if (at_b0 > d_tail + w.b0 + slack) {
+        if (ends.at_b1 > d_tail + w.b1 + slack) return false;
+        if (ends.at_b0 > d_tail + w.b0 + slack) {
             const double x = vertex_takeover(w.sx, w.sy, w.sigma, d_tail, slack);
             if (x > w.b0 && x < w.b1) {
                 w.b0 = x;
-                at_b0 = w.value_at(x);
+                ends.at_b0 = w.value_at(x);
             }
         }
     }
     if (d_head < k_infinity) {
-        if (at_b0 > d_head + (length - w.b0) + slack) return false;
-        if (at_b1 > d_head + (length - w.b1) + slack) {
+        if (ends.at_b0 > d_head + (length - w.b0) + slack) return false;
+        if (ends.at_b1 > d_head + (length - w.b1) + slack) {
             const double y = vertex_takeover(length - w.sx, w.sy, w.sigma, d_head, slack);
             if (length - y > w.b0 && length - y < w.b1) {
                 w.b1 = length - y;
-                at_b1 = w.value_at(w.b1);
+                ends.at_b1 = w.value_at(w.b1);
             }
         }
     }
-    ends = {at_b0, at_b1};
     return w.b0 < w.b1;
 }
 
