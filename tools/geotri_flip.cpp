@@ -11,8 +11,8 @@
 #include "tool.h"
 
 #include <geodesic/errors.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/gtri_io.h>
+#include <geotri/untangle_and_flip.h>
 
 #include <cstdio>
 #include <map>
@@ -58,7 +58,7 @@ int run(tools::Tool& tool) {
                        "propagation (21-28 s on 2 cores; the same result on any machine). Given, they go\n"
                        "on to the end, which can take minutes where they mend nothing")
             ->check(CLI::Range(0, 2));
-    int bisection_rounds = geotri::FlipToDelaunayOptions{}.bisection_rounds;
+    int bisection_rounds = geotri::UntangleOptions{}.bisection_rounds;
     app.add_option("--bisection-rounds", bisection_rounds,
                    "Where untangling is still stuck after all that, split every edge that a violation\n"
                    "names at the middle of its polyline and go on: at most this many times (default 4;\n"
@@ -75,17 +75,20 @@ int run(tools::Tool& tool) {
     geotri::GeodesicTriangulation g = geotri::read_gtri(input, fine_override);
     const double load_seconds = tools::now_seconds() - load_start;
 
-    geotri::FlipToDelaunayOptions options;
-    options.threads = tool.common.threads;
-    options.thorough = thorough;
-    options.bisection_rounds = bisection_rounds;
-    if (thorough_option->count() > 0) options.thorough_budget = 0;
-    options.criterion = criterion_name == "length" ? geotri::FlipCriterion::length : geotri::FlipCriterion::angle;
-    options.progress = [&progress](const std::string& where) { progress.stage(where); };
+    geotri::UntangleAndFlipOptions options;
+    options.untangling.threads = tool.common.threads;
+    options.untangling.thorough = thorough;
+    options.untangling.bisection_rounds = bisection_rounds;
+    if (thorough_option->count() > 0) options.untangling.thorough_budget = 0;
+    options.flipping.threads = tool.common.threads;
+    options.flipping.criterion =
+        criterion_name == "length" ? geotri::FlipCriterion::length : geotri::FlipCriterion::angle;
+    options.untangling.progress = [&progress](const std::string& where) { progress.stage(where); };
+    options.flipping.progress = options.untangling.progress;
     progress.stage("flipping");
-    geotri::FlipToDelaunayResult r;
+    geotri::UntangleAndFlipResult r;
     try {
-        r = geotri::flip_to_delaunay(g, options);
+        r = geotri::untangle_and_flip(g, options);
     } catch (const geotri::InvalidInput& e) {
         throw geotri::InvalidInput(input + ": " + e.what());
     }
@@ -96,8 +99,10 @@ int run(tools::Tool& tool) {
     const double write_seconds = tools::now_seconds() - write_start;
     progress.clear();
 
+    const geotri::UntangleResult& u = r.untangling;
+    const geotri::FlipToDelaunayResult& f = r.flipping;
     int refused = 0;
-    for (int n : r.improve_refused) refused += n;
+    for (int n : f.refused) refused += n;
     if (tool.common.json) {
         tools::JsonSummary summary;
         summary.add("input", input);
@@ -106,38 +111,38 @@ int run(tools::Tool& tool) {
         summary.add("vertices", g.coarse().n_vertices());
         summary.add("edges", g.coarse().n_edges());
         summary.add("faces", g.coarse().n_faces());
-        summary.add("valid_before", r.valid_before);
+        summary.add("valid_before", u.valid_before);
         summary.add("valid", r.valid_after);
         for (std::size_t c = 0; c < 4; ++c) {
-            summary.add("condition_" + std::to_string(c + 1) + "_before", r.violations_before[c]);
+            summary.add("condition_" + std::to_string(c + 1) + "_before", u.violations_before[c]);
             summary.add("condition_" + std::to_string(c + 1), r.violations_after[c]);
         }
-        summary.add("untangle_flips", r.untangle_flips);
-        summary.add("untangle_fork_splits", r.untangle_fork_splits);
-        summary.add("untangle_meeting_splits", r.untangle_meeting_splits);
-        summary.add("untangle_collapses", r.untangle_collapses);
-        summary.add("untangle_relocations", r.untangle_relocations);
-        summary.add("untangle_bisections", r.untangle_bisections);
-        summary.add("untangle_kept_bisection_vertices", r.untangle_kept_bisection_vertices);
-        summary.add("untangle_rejected", r.untangle_rejected);
-        summary.add("untangle_refused", r.untangle_refused);
-        summary.add("untangle_stuck", r.untangle_stuck);
-        summary.add("last_resorts_tried", r.last_resorts_tried);
-        summary.add("thorough_budget_spent", r.thorough_budget_spent);
-        summary.add("thorough_windows", r.thorough_windows);
-        summary.add("improve_flips", r.improve_flips);
-        summary.add("improve_passes", r.improve_passes);
-        summary.add("improve_plans", r.improve_plans);
-        summary.add("improve_region_flips", r.improve_region_flips);
+        summary.add("untangle_flips", u.flips);
+        summary.add("untangle_fork_splits", u.fork_splits);
+        summary.add("untangle_meeting_splits", u.meeting_splits);
+        summary.add("untangle_collapses", u.collapses);
+        summary.add("untangle_relocations", u.relocations);
+        summary.add("untangle_bisections", u.bisections);
+        summary.add("untangle_kept_bisection_vertices", u.kept_bisection_vertices);
+        summary.add("untangle_rejected", u.rejected);
+        summary.add("untangle_refused", u.refused);
+        summary.add("untangle_stuck", u.stuck);
+        summary.add("last_resorts_tried", u.last_resorts_tried);
+        summary.add("thorough_budget_spent", u.thorough_budget_spent);
+        summary.add("thorough_windows", u.thorough_windows);
+        summary.add("improve_flips", f.flips);
+        summary.add("improve_passes", f.passes);
+        summary.add("improve_plans", f.plans);
+        summary.add("improve_region_flips", f.region_flips);
         for (int k = 1; k < 5; ++k) {
             std::string key = geotri::to_string(static_cast<geotri::FlipRefusal>(k));
             for (char& ch : key)
                 if (ch == ' ') ch = '_';
-            summary.add("refused_" + key, r.improve_refused[static_cast<std::size_t>(k)]);
+            summary.add("refused_" + key, f.refused[static_cast<std::size_t>(k)]);
         }
-        summary.add("improve_skipped", r.improve_skipped);
-        summary.add("pass_cap_reached", r.pass_cap_reached);
-        summary.add("improve_reverted", r.improve_reverted);
+        summary.add("improve_skipped", f.skipped);
+        summary.add("pass_cap_reached", f.pass_cap_reached);
+        summary.add("improve_reverted", f.reverted);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);
         summary.add("load_seconds", load_seconds);
         summary.add("flip_seconds", r.seconds);
@@ -147,28 +152,28 @@ int run(tools::Tool& tool) {
     }
     if (tool.verbose()) {
         const char* program = tool.program().c_str();
-        std::fprintf(stderr, "%s: before: %s (%s)\n", program, r.valid_before ? "valid" : "INVALID",
-                     counts(r.violations_before).c_str());
+        std::fprintf(stderr, "%s: before: %s (%s)\n", program, u.valid_before ? "valid" : "INVALID",
+                     counts(u.violations_before).c_str());
         std::fprintf(stderr,
                      "%s: untangle: %d flips, %d fork splits, %d splits at meetings, %d collapses and %d vertex moves "
                      "kept, %d edges bisected, %d tried and undone, %d not possible%s\n",
-                     program, r.untangle_flips, r.untangle_fork_splits, r.untangle_meeting_splits, r.untangle_collapses,
-                     r.untangle_relocations, r.untangle_bisections,
-                     r.untangle_rejected, r.untangle_refused,
-                     r.untangle_stuck ? "; stuck: no operation lowers the violations left" : "");
-        if (r.untangle_kept_bisection_vertices)
+                     program, u.flips, u.fork_splits, u.meeting_splits, u.collapses,
+                     u.relocations, u.bisections,
+                     u.rejected, u.refused,
+                     u.stuck ? "; stuck: no operation lowers the violations left" : "");
+        if (u.kept_bisection_vertices)
             std::fprintf(stderr, "%s: untangled a second time, keeping the vertices that bisections added\n", program);
-        if (r.improve_skipped) {
+        if (f.skipped) {
             std::fprintf(stderr, "%s: improve: skipped, G is not valid\n", program);
         } else {
             std::fprintf(stderr, "%s: improve (%s): %d flips (%d inside the patches) in %d sweeps (%d computed)%s%s; %d refused (",
-                         program, criterion_name.c_str(), r.improve_flips, r.improve_region_flips, r.improve_passes,
-                         r.improve_plans,
-                         r.pass_cap_reached ? ", sweep cap reached" : "",
-                         r.improve_reverted ? ", UNDONE: the result was invalid" : "", refused);
+                         program, criterion_name.c_str(), f.flips, f.region_flips, f.passes,
+                         f.plans,
+                         f.pass_cap_reached ? ", sweep cap reached" : "",
+                         f.reverted ? ", UNDONE: the result was invalid" : "", refused);
             for (int k = 1; k < 5; ++k)
                 std::fprintf(stderr, "%s%s %d", k > 1 ? ", " : "", geotri::to_string(static_cast<geotri::FlipRefusal>(k)),
-                             r.improve_refused[static_cast<std::size_t>(k)]);
+                             f.refused[static_cast<std::size_t>(k)]);
             std::fprintf(stderr, ")\n");
         }
         std::fprintf(stderr, "%s: corner angles before: min %.4g, mean %.4g, max %.4g degrees\n", program,
@@ -181,11 +186,11 @@ int run(tools::Tool& tool) {
             std::fprintf(stderr, "%s: %s is written but still invalid: %d violation%s left, the first: %s\n", program,
                          output.c_str(), total(r.violations_after), total(r.violations_after) == 1 ? "" : "s",
                          r.remaining.empty() ? "?" : r.remaining.front().what.c_str());
-            if (r.thorough_budget_spent)
+            if (u.thorough_budget_spent)
                 std::fprintf(stderr, "%s: untangling's last resorts stopped at their budget of work; --thorough 2 "
                                      "tries them to the end, at a cost of minutes\n",
                              program);
-            else if (r.last_resorts_tried && thorough < 2)
+            else if (u.last_resorts_tried && thorough < 2)
                 std::fprintf(stderr, "%s: --thorough %d may mend it, at a cost of seconds to minutes\n", program,
                              thorough + 1);
             std::fprintf(stderr, "%s: a coarse mesh with more faces (geotri-decimate --faces) has shorter geodesics, "

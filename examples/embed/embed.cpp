@@ -13,13 +13,7 @@
 
 #include <geodesic/errors.h>          // geotri::Error and the typed exceptions derived from it
 #include <geodesic/exact_geodesic.h>  // geotri::geodesic::ExactGeodesic, path_length
-#include <geotri/decimate.h>
-#include <geotri/fine_mesh.h>
-#include <geotri/flip_to_delaunay.h>
-#include <geotri/geodesic_triangulation.h>
-#include <geotri/gtri_io.h>
-#include <geotri/trace.h>
-#include <geotri/validate.h>
+#include <geotri/geotri.h>               // the whole public API, and build_geodesic_triangulation()
 
 #include <algorithm>
 #include <cerrno>
@@ -97,34 +91,32 @@ void report_distance_field(const geotri::FineMesh& fine)
                 "difference %.1e)\n", farthest, path.size(), length, difference);
 }
 
-// Step 3, libgeotri: the pipeline of geotri-decimate, geotri-trace, geotri-flip and geotri-check in one program.
-void build_geodesic_triangulation(const std::shared_ptr<const geotri::FineMesh>& fine, std::size_t faces,
-                                  const std::string& gtri_path)
+// Step 3, libgeotri: what geotri-decimate, geotri-trace and geotri-flip do, in one call, with the same result.
+void report_geodesic_triangulation(const std::shared_ptr<const geotri::FineMesh>& fine, std::size_t faces,
+                                   const std::string& gtri_path)
 {
-    // The coarse mesh: its vertices are vertices of T at their exact positions, each component keeps its genus.
-    geotri::DecimateOptions decimate_options;
-    decimate_options.target_faces = faces;
-    const geotri::DecimateResult decimated = geotri::decimate(*fine, decimate_options);
+    geotri::BuildOptions options;
+    options.decimation.target_faces = faces;
+    const geotri::BuildResult built = geotri::build_geodesic_triangulation(fine, options);
+
+    // The coarse vertices are vertices of T at their exact positions, and each component keeps its genus; where
+    // the topology needs more faces than asked for, the target is not reached.
+    const geotri::DecimateResult& decimated = built.decimation.decimation;
     std::printf("decimated to %zu faces (target %zu%s)\n", decimated.coarse.triangles.size(), faces,
                 decimated.target_reached ? "" : ", not reached: the topology or the mesh needs more");
-
-    // G shares T (no copy) and starts with straight coarse edges; trace() makes each one an exact geodesic of T.
-    geotri::GeodesicTriangulation g(fine, geotri::make_coarse_mesh(decimated.coarse, "decimated mesh"));
-    const geotri::TraceResult traced = geotri::trace(g);
-    std::printf("traced %zu edges as exact geodesics (%d propagations)\n", g.coarse().n_edges(),
-                traced.propagations);
+    std::printf("traced %zu edges as exact geodesics (%d propagations)\n", decimated.edges.size(),
+                built.tracing.propagations);
 
     // Traced geodesics may cross or fold over one another; flips, splits, collapses and vertex moves untangle
     // them, then flips make the triangles better shaped. Untangling may not succeed on every mesh: the result says so.
-    const geotri::FlipToDelaunayResult flipped = geotri::flip_to_delaunay(g);
+    const geotri::UntangleResult& untangled = built.flips.untangling;
     std::printf("untangling (%s before): %d flips, %d fork splits, %d splits at meetings, %d collapses, %d vertex "
                 "moves; %d flips towards Delaunay\n",
-                flipped.valid_before ? "valid" : "invalid", flipped.untangle_flips, flipped.untangle_fork_splits,
-                flipped.untangle_meeting_splits, flipped.untangle_collapses, flipped.untangle_relocations,
-                flipped.improve_flips);
+                untangled.valid_before ? "valid" : "invalid", untangled.flips, untangled.fork_splits,
+                untangled.meeting_splits, untangled.collapses, untangled.relocations, built.flips.flipping.flips);
 
     // The judge: the four validity conditions, and summary figures. It reports an invalid G, it does not throw.
-    const geotri::ValidationReport report = geotri::validate(g);
+    const geotri::ValidationReport& report = built.report;
     if (report.valid) {
         std::printf("G: %d faces, valid, min corner angle %.2f degrees\n", report.faces,
                     report.min_corner_angle_deg);
@@ -137,7 +129,7 @@ void build_geodesic_triangulation(const std::shared_ptr<const geotri::FineMesh>&
 
     // The .gtri refers to T by its path (relative to the .gtri's folder) and checksum; the geotri-* tools read it.
     if (!gtri_path.empty()) {
-        geotri::write_gtri(gtri_path, g);
+        geotri::write_gtri(gtri_path, built.g);
         std::printf("wrote %s\n", gtri_path.c_str());
     }
 }
@@ -167,7 +159,7 @@ int main(int argc, char** argv)
                     fine->mesh.num_faces(), fine->num_components, fine->num_components == 1 ? "" : "s");
 
         report_distance_field(*fine);
-        build_geodesic_triangulation(fine, faces, gtri_path);
+        report_geodesic_triangulation(fine, faces, gtri_path);
     } catch (const geotri::Error& error) {  // InvalidInput, TopologyError, IOError, NumericalError
         std::fprintf(stderr, "embed: error: %s\n", error.what());
         return k_exit_error;

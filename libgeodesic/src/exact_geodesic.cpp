@@ -1,6 +1,7 @@
 #include "event_queue.h"
 #include "window.h"
 
+#include <geodesic/constants.h>
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
 
@@ -30,7 +31,6 @@ constexpr double k_margin = 1e-12;
 // Cone angles within this of 2π count as flat: geodesics pass straight through, no pseudo-source is needed, and the
 // rounding gaps left behind are closed by k_cover.
 constexpr double k_flat = 1e-13;
-constexpr double k_two_pi = 6.283185307179586476925286766559;
 // How far a saddle's emission reaches beyond its exact shadow (radians), to cover rounding at the shadow's rims.
 // A path can bend by this much less than π at the saddle, so it must stay far below what a straightness check
 // allows; rays just outside the shadow are carried by the windows that pass beside the saddle anyway.
@@ -803,11 +803,11 @@ double ExactGeodesic::Impl::incoming_polar_angle(int v) const {
     };
     double angle;
     if (v == mesh_.tail(h)) {  // clockwise from the direction of h
-        angle = mesh_.polar_angle(h) - std::clamp(-angle_from(Vec2(1.0, 0.0), source), 0.0, M_PI);
+        angle = mesh_.polar_angle(h) - std::clamp(-angle_from(Vec2(1.0, 0.0), source), 0.0, k_pi);
     } else if (v == mesh_.head(h)) {  // counter-clockwise beyond the direction head -> tail
         const int n = Mesh::next(h);
         angle = mesh_.polar_angle(n) + mesh_.corner_angle(n) +
-                std::clamp(angle_from(Vec2(-1.0, 0.0), source - Vec2(mesh_.length(h), 0.0)), 0.0, M_PI);
+                std::clamp(angle_from(Vec2(-1.0, 0.0), source - Vec2(mesh_.length(h), 0.0)), 0.0, k_pi);
     } else {  // v is the apex: inside its corner, counter-clockwise from the direction apex -> tail
         const int p = Mesh::prev(h);
         const Vec2 apex = mesh_.apex(h);
@@ -827,8 +827,8 @@ void ExactGeodesic::Impl::emit_from_vertex(int v) {
     const double incoming = keep_windows_ ? incoming_polar_angle(v) : incoming_angle_[v];
     const double cone = mesh_.cone_angle(v);
     const bool everywhere = std::isnan(incoming);
-    const double shadow_start = incoming + M_PI - k_shadow_slack;
-    const double shadow_length = cone - 2.0 * M_PI + 2.0 * k_shadow_slack;
+    const double shadow_start = incoming + k_pi - k_shadow_slack;
+    const double shadow_length = cone - 2.0 * k_pi + 2.0 * k_shadow_slack;
     if (!everywhere && shadow_length <= 0.0) return;
 
     // Along an edge too, only inside the shadow: outside it the path along the edge bends at v by less than π,

@@ -1,3 +1,4 @@
+#include <geodesic/constants.h>
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
 #include <geodesic/straighten_path.h>
@@ -16,7 +17,6 @@ namespace {
 
 using Eigen::Vector2d;
 
-constexpr double k_pi = 3.14159265358979323846;
 // A bend with this little less than π on its far side is rounding, not a shorter way round.
 constexpr double k_angle_slack = 1e-12;
 // Passes in a row that move the sleeve without shortening the path, before giving up: every move should shorten it.

@@ -6,8 +6,8 @@
 #include <geotri/collapse.h>
 #include <geotri/decimate.h>
 #include <geotri/fine_mesh.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/trace.h>
+#include <geotri/untangle_and_flip.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
 #include <geotri_test/g_checks.h>
@@ -157,7 +157,7 @@ TEST(Collapse, collapses_of_a_traced_vertebra_leave_g_valid_or_are_refused) {
         load_fine_mesh(test::shared_mesh("anatomy/lumbar_vertebra_mean_2nd.ply").path));
     GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 320));
     trace(g);
-    flip_to_delaunay(g);  // the traced G is not valid at this size; flips make it so
+    untangle_and_flip(g);  // the traced G is not valid at this size; flips make it so
     check_every_collapse(g, "lumbar vertebra", 7);  // every seventh: each check builds the overlay
 }
 

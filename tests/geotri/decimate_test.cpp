@@ -6,6 +6,7 @@
 #include <geodesic/errors.h>
 #include <geotri/decimate.h>
 #include <geotri/fine_mesh.h>
+#include <geotri/mesh_io.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 

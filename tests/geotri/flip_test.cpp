@@ -1,4 +1,4 @@
-// Flips of coarse edges and flip_to_delaunay() (issue 4): hand-made G on a procedural cube and sphere, checked
+// Flips of coarse edges and untangle_and_flip() (issue 4): hand-made G on a procedural cube and sphere, checked
 // against closed forms and validate(); and traced G on real meshes, checked with validate() after every change.
 
 #include <geodesic/errors.h>
@@ -7,9 +7,9 @@
 #include <geotri/edge_paths_io.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/flip.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/refine.h>
 #include <geotri/trace.h>
+#include <geotri/untangle_and_flip.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
 #include <geotri_test/g_checks.h>
@@ -276,15 +276,15 @@ void check_improve(std::shared_ptr<const FineMesh> fine, const CoarseMesh& coars
     trace(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     const CornerAngleStats before = corner_angle_stats(g);
-    FlipToDelaunayOptions options;
-    options.criterion = criterion;
+    UntangleAndFlipOptions options;
+    options.flipping.criterion = criterion;
     GeodesicTriangulation twin = g;
-    const FlipToDelaunayResult r = flip_to_delaunay(g, options);
-    EXPECT_TRUE(r.valid_before);
+    const UntangleAndFlipResult r = untangle_and_flip(g, options);
+    EXPECT_TRUE(r.untangling.valid_before);
     EXPECT_TRUE(r.valid_after);
-    EXPECT_FALSE(r.pass_cap_reached);
-    EXPECT_FALSE(r.improve_reverted);
-    EXPECT_EQ(r.untangle_flips, 0);
+    EXPECT_FALSE(r.flipping.pass_cap_reached);
+    EXPECT_FALSE(r.flipping.reverted);
+    EXPECT_EQ(r.untangling.flips, 0);
     expect_valid_with_area(g);
     EXPECT_DOUBLE_EQ(r.angles_before.min_deg, before.min_deg);
     const CornerAngleStats after = corner_angle_stats(g);
@@ -292,12 +292,12 @@ void check_improve(std::shared_ptr<const FineMesh> fine, const CoarseMesh& coars
     if (criterion == FlipCriterion::angle) {
         EXPECT_GE(after.min_deg, before.min_deg);
     }
-    std::cout << "[ improve  ] " << to_string(criterion) << ": " << r.improve_flips << " flips in "
-              << r.improve_passes << " sweeps, min corner " << before.min_deg << "° -> " << after.min_deg << "°\n";
+    std::cout << "[ improve  ] " << to_string(criterion) << ": " << r.flipping.flips << " flips in "
+              << r.flipping.passes << " sweeps, min corner " << before.min_deg << "° -> " << after.min_deg << "°\n";
 
-    const FlipToDelaunayResult again = flip_to_delaunay(g, options);
-    EXPECT_EQ(again.improve_flips, 0);
-    flip_to_delaunay(twin, options);
+    const UntangleAndFlipResult again = untangle_and_flip(g, options);
+    EXPECT_EQ(again.flipping.flips, 0);
+    untangle_and_flip(twin, options);
     EXPECT_TRUE(snapshot(twin) == snapshot(g));
 }
 
@@ -323,9 +323,9 @@ TEST(FlipToDelaunay, cube_with_skinny_triangles_is_improved) {
                                       {0, 5, 4}, {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 3, 7}, {1, 7, 5}},
                                      {0.5, 0.5, 0.5});
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
-    const FlipToDelaunayResult r = flip_to_delaunay(g);
+    const UntangleAndFlipResult r = untangle_and_flip(g);
     EXPECT_TRUE(r.valid_after);
-    EXPECT_GT(r.improve_flips, 0);
+    EXPECT_GT(r.flipping.flips, 0);
     EXPECT_GT(r.angles_after.min_deg, r.angles_before.min_deg);
     expect_valid_with_area(g);
 }
@@ -363,21 +363,22 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
         GeodesicTriangulation g(fine, make_coarse_mesh(decimated.coarse, name));
         trace(g);
         const GeodesicTriangulation traced_g = g;
-        const FlipToDelaunayResult r = flip_to_delaunay(g);
+        const UntangleAndFlipResult r = untangle_and_flip(g);
         const ValidationReport check = validate(g);
-        if (r.untangle_collapses + r.untangle_relocations > 0) {
+        if (r.untangling.collapses + r.untangling.relocations > 0) {
             // Collapses renumber G and moves try many points: the result must not depend on the thread count.
             GeodesicTriangulation one_thread = traced_g;
-            FlipToDelaunayOptions options;
-            options.threads = 1;
-            flip_to_delaunay(one_thread, options);
+            UntangleAndFlipOptions options;
+            options.untangling.threads = 1;
+    options.flipping.threads = 1;
+            untangle_and_flip(one_thread, options);
             expect_same_polylines(one_thread, g, name);
         }
         EXPECT_EQ(check.valid, r.valid_after) << name;
         EXPECT_EQ(check.violation_count, r.violations_after) << name;
-        EXPECT_LE(total(r.violations_after), total(r.violations_before)) << name;
+        EXPECT_LE(total(r.violations_after), total(r.untangling.violations_before)) << name;
         EXPECT_TRUE(r.valid_after) << name << ":\n" << describe(check);
-        if (r.valid_before) {
+        if (r.untangling.valid_before) {
             EXPECT_GE(r.angles_after.min_deg, r.angles_before.min_deg) << name;
         } else {
             ++invalid;
@@ -387,10 +388,10 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
             EXPECT_NEAR(check.patch_area, check.fine_area, 1e-9 * check.fine_area) << name;
         }
         std::cout << "[ flip     ] " << name << ": " << g.coarse().n_faces() << " faces, "
-                  << (r.valid_before ? "valid" : "invalid") << " -> " << (r.valid_after ? "valid" : "INVALID")
-                  << " (" << total(r.violations_before) << " -> " << total(r.violations_after)
-                  << " violations), " << r.untangle_flips << " untangle flips + " << r.untangle_fork_splits
-                  << " fork splits + " << r.untangle_collapses << " collapses + " << r.untangle_relocations << " moves + " << r.improve_flips << " improve flips, min corner " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg
+                  << (r.untangling.valid_before ? "valid" : "invalid") << " -> " << (r.valid_after ? "valid" : "INVALID")
+                  << " (" << total(r.untangling.violations_before) << " -> " << total(r.violations_after)
+                  << " violations), " << r.untangling.flips << " untangle flips + " << r.untangling.fork_splits
+                  << " fork splits + " << r.untangling.collapses << " collapses + " << r.untangling.relocations << " moves + " << r.flipping.flips << " improve flips, min corner " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg
                   << "°, " << r.seconds << " s\n";
     }
     std::cout << "[ flip     ] " << made_valid << " of " << invalid << " invalid traced G became valid\n";
@@ -411,25 +412,26 @@ TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
 
     // Without the collapses judged after untangling (thorough 0), which go on to make it valid, nor bisections.
-    FlipToDelaunayOptions plain;
-    plain.thorough = 0;
-    plain.bisection_rounds = 0;
+    UntangleAndFlipOptions plain;
+    plain.untangling.thorough = 0;
+    plain.untangling.bisection_rounds = 0;
     GeodesicTriangulation g = traced;
-    const FlipToDelaunayResult r = flip_to_delaunay(g, plain);
-    EXPECT_GE(r.untangle_meeting_splits, 1);
-    EXPECT_LT(total(r.violations_after), total(r.violations_before));
+    const UntangleAndFlipResult r = untangle_and_flip(g, plain);
+    EXPECT_GE(r.untangling.meeting_splits, 1);
+    EXPECT_LT(total(r.violations_after), total(r.untangling.violations_before));
     EXPECT_EQ(validate(g).violation_count, r.violations_after);
     // A split and the operations that settle it run in one trial, on one thread: the same G for any thread count.
     for (int threads : {1, 3}) {
         GeodesicTriangulation again = traced;
-        plain.threads = threads;
-        const FlipToDelaunayResult same = flip_to_delaunay(again, plain);
-        EXPECT_EQ(same.untangle_meeting_splits, r.untangle_meeting_splits) << threads << " threads";
+        plain.untangling.threads = threads;
+    plain.flipping.threads = threads;
+        const UntangleAndFlipResult same = untangle_and_flip(again, plain);
+        EXPECT_EQ(same.untangling.meeting_splits, r.untangling.meeting_splits) << threads << " threads";
         expect_same_polylines(again, g, std::to_string(threads) + " threads");
     }
-    std::cout << "[ flip     ] " << name << " at the coarsest level: " << total(r.violations_before) << " -> "
-              << total(r.violations_after) << " violations, " << r.untangle_meeting_splits << " splits at meetings, "
-              << r.untangle_fork_splits << " fork splits, " << r.seconds << " s\n";
+    std::cout << "[ flip     ] " << name << " at the coarsest level: " << total(r.untangling.violations_before) << " -> "
+              << total(r.violations_after) << " violations, " << r.untangling.meeting_splits << " splits at meetings, "
+              << r.untangling.fork_splits << " fork splits, " << r.seconds << " s\n";
 }
 
 TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_nothing_else_helps) {
@@ -449,22 +451,23 @@ TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_n
         const GeodesicTriangulation traced = traced_as_the_pipeline_does(c.name, c.coarsest);
 
         GeodesicTriangulation g = traced;
-        const FlipToDelaunayResult r = flip_to_delaunay(g);
+        const UntangleAndFlipResult r = untangle_and_flip(g);
         const ValidationReport check = validate(g);
-        EXPECT_FALSE(r.valid_before) << c.name;
+        EXPECT_FALSE(r.untangling.valid_before) << c.name;
         EXPECT_TRUE(r.valid_after) << c.name << ":\n" << describe(check);
         EXPECT_TRUE(check.valid) << c.name;
         EXPECT_NEAR(check.patch_area, check.fine_area, 1e-9 * check.fine_area) << c.name;
         for (int threads : {1, 3}) {
             GeodesicTriangulation again = traced;
-            FlipToDelaunayOptions with;
-            with.threads = threads;
-            flip_to_delaunay(again, with);
+            UntangleAndFlipOptions with;
+            with.untangling.threads = threads;
+    with.flipping.threads = threads;
+            untangle_and_flip(again, with);
             expect_same_polylines(again, g, c.name + ", " + std::to_string(threads) + " threads");
         }
         std::cout << "[ flip     ] " << c.name << (c.coarsest ? " at the coarsest level: " : " at 320 faces: ")
-                  << total(r.violations_before) << " -> " << total(r.violations_after) << " violations, "
-                  << r.untangle_flips << " flips, " << r.untangle_relocations << " moves, " << r.seconds << " s\n";
+                  << total(r.untangling.violations_before) << " -> " << total(r.violations_after) << " violations, "
+                  << r.untangling.flips << " flips, " << r.untangling.relocations << " moves, " << r.seconds << " s\n";
     }
 }
 
@@ -477,31 +480,33 @@ TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only
     // until what it leaves is untangled around the vertex kept.
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
 
-    FlipToDelaunayOptions plain;
-    plain.thorough = 0;
-    plain.bisection_rounds = 0;  // the last resort after these, which would go on
+    UntangleAndFlipOptions plain;
+    plain.untangling.thorough = 0;
+    plain.untangling.bisection_rounds = 0;  // the last resort after these, which would go on
     GeodesicTriangulation without = traced;
-    const FlipToDelaunayResult stuck = flip_to_delaunay(without, plain);
-    EXPECT_TRUE(stuck.untangle_stuck);
-    EXPECT_TRUE(stuck.last_resorts_tried);  // geotri-flip then suggests --thorough
+    const UntangleAndFlipResult stuck = untangle_and_flip(without, plain);
+    EXPECT_TRUE(stuck.untangling.stuck);
+    EXPECT_TRUE(stuck.untangling.last_resorts_tried);  // geotri-flip then suggests --thorough
     EXPECT_FALSE(stuck.valid_after);
 
-    FlipToDelaunayOptions thorough;
-    thorough.thorough = 1;
-    thorough.threads = 1;
+    UntangleAndFlipOptions thorough;
+    thorough.untangling.thorough = 1;
+    thorough.untangling.threads = 1;
+    thorough.flipping.threads = 1;
     GeodesicTriangulation g = traced;
-    const FlipToDelaunayResult r = flip_to_delaunay(g, thorough);
+    const UntangleAndFlipResult r = untangle_and_flip(g, thorough);
     EXPECT_TRUE(r.valid_after);
-    EXPECT_FALSE(r.thorough_budget_spent);
+    EXPECT_FALSE(r.untangling.thorough_budget_spent);
     expect_valid_with_area(g);
 
     GeodesicTriangulation again = traced;
-    thorough.threads = 3;
-    flip_to_delaunay(again, thorough);
+    thorough.untangling.threads = 3;
+    thorough.flipping.threads = 3;
+    untangle_and_flip(again, thorough);
     expect_same_polylines(again, g, "3 threads");
-    std::cout << "[ flip     ] " << name << " at the coarsest level, thorough: " << total(r.violations_before)
+    std::cout << "[ flip     ] " << name << " at the coarsest level, thorough: " << total(r.untangling.violations_before)
               << " -> " << total(r.violations_after) << " violations (" << total(stuck.violations_after)
-              << " without), " << r.untangle_collapses << " collapses, " << r.seconds << " s\n";
+              << " without), " << r.untangling.collapses << " collapses, " << r.seconds << " s\n";
 }
 
 TEST(FlipToDelaunay, thorough_untangling_stops_where_its_budget_of_work_is_spent_the_same_for_any_thread_count) {
@@ -512,33 +517,35 @@ TEST(FlipToDelaunay, thorough_untangling_stops_where_its_budget_of_work_is_spent
     // The first collapse that level 1 does makes millions of windows and does not mend anchor_dense (the fifth
     // does): a budget of one window stops after it, whichever thread tried it and whatever the others tried.
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, true);
-    FlipToDelaunayOptions plain;
-    plain.thorough = 0;
-    plain.bisection_rounds = 0;
+    UntangleAndFlipOptions plain;
+    plain.untangling.thorough = 0;
+    plain.untangling.bisection_rounds = 0;
     GeodesicTriangulation without = traced;
-    const FlipToDelaunayResult stuck = flip_to_delaunay(without, plain);
+    const UntangleAndFlipResult stuck = untangle_and_flip(without, plain);
 
-    FlipToDelaunayOptions tight;
-    tight.thorough = 2;
-    tight.thorough_budget = 1;
-    tight.bisection_rounds = 0;  // which would go on once the budget is spent
-    tight.threads = 1;
+    UntangleAndFlipOptions tight;
+    tight.untangling.thorough = 2;
+    tight.untangling.thorough_budget = 1;
+    tight.untangling.bisection_rounds = 0;  // which would go on once the budget is spent
+    tight.untangling.threads = 1;
+    tight.flipping.threads = 1;
     GeodesicTriangulation g = traced;
-    const FlipToDelaunayResult r = flip_to_delaunay(g, tight);
-    EXPECT_TRUE(r.thorough_budget_spent);
+    const UntangleAndFlipResult r = untangle_and_flip(g, tight);
+    EXPECT_TRUE(r.untangling.thorough_budget_spent);
     EXPECT_FALSE(r.valid_after);
     // The collapses that cannot be done cost nothing; the first that can spends the budget, and the G stays the one
     // that plain untangling leaves, where level 1 with the default budget makes it valid (the test before).
-    EXPECT_GT(r.untangle_rejected + r.untangle_refused, stuck.untangle_rejected + stuck.untangle_refused);
-    EXPECT_EQ(r.untangle_collapses, stuck.untangle_collapses);
+    EXPECT_GT(r.untangling.rejected + r.untangling.refused, stuck.untangling.rejected + stuck.untangling.refused);
+    EXPECT_EQ(r.untangling.collapses, stuck.untangling.collapses);
     expect_same_polylines(g, without, "a budget of one window");
     for (int threads : {2, 3}) {
         GeodesicTriangulation again = traced;
-        tight.threads = threads;
-        const FlipToDelaunayResult other = flip_to_delaunay(again, tight);
-        EXPECT_TRUE(other.thorough_budget_spent) << threads << " threads";
-        EXPECT_EQ(other.untangle_rejected, r.untangle_rejected) << threads << " threads";
-        EXPECT_EQ(other.untangle_refused, r.untangle_refused) << threads << " threads";
+        tight.untangling.threads = threads;
+    tight.flipping.threads = threads;
+        const UntangleAndFlipResult other = untangle_and_flip(again, tight);
+        EXPECT_TRUE(other.untangling.thorough_budget_spent) << threads << " threads";
+        EXPECT_EQ(other.untangling.rejected, r.untangling.rejected) << threads << " threads";
+        EXPECT_EQ(other.untangling.refused, r.untangling.refused) << threads << " threads";
         expect_same_polylines(again, g, std::to_string(threads) + " threads");
     }
 }
@@ -552,22 +559,22 @@ TEST(FlipToDelaunay, by_default_untangling_nests_those_collapses_and_makes_femur
     // within its budget, goes on with collapses whose untangling may itself end with such collapses.
     const GeodesicTriangulation traced = traced_as_the_pipeline_does(name, false);
 
-    FlipToDelaunayOptions level_1;
-    level_1.thorough = 1;
-    level_1.thorough_budget = 0;
-    level_1.bisection_rounds = 0;
+    UntangleAndFlipOptions level_1;
+    level_1.untangling.thorough = 1;
+    level_1.untangling.thorough_budget = 0;
+    level_1.untangling.bisection_rounds = 0;
     GeodesicTriangulation stuck_g = traced;
-    const FlipToDelaunayResult stuck = flip_to_delaunay(stuck_g, level_1);
+    const UntangleAndFlipResult stuck = untangle_and_flip(stuck_g, level_1);
     EXPECT_FALSE(stuck.valid_after);
 
     GeodesicTriangulation g = traced;
-    const FlipToDelaunayResult r = flip_to_delaunay(g);
+    const UntangleAndFlipResult r = untangle_and_flip(g);
     EXPECT_TRUE(r.valid_after);
-    EXPECT_FALSE(r.thorough_budget_spent);
+    EXPECT_FALSE(r.untangling.thorough_budget_spent);
     expect_valid_with_area(g);
-    std::cout << "[ flip     ] " << name << " at 320 faces, by default: " << total(r.violations_before) << " -> "
+    std::cout << "[ flip     ] " << name << " at 320 faces, by default: " << total(r.untangling.violations_before) << " -> "
               << total(r.violations_after) << " violations (" << total(stuck.violations_after) << " with 1), "
-              << r.untangle_collapses << " collapses, " << r.seconds << " s\n";
+              << r.untangling.collapses << " collapses, " << r.seconds << " s\n";
 }
 
 TEST(FlipToDelaunay, untangling_bisects_the_tangled_edges_where_nothing_else_helps) {
@@ -575,22 +582,23 @@ TEST(FlipToDelaunay, untangling_bisects_the_tangled_edges_where_nothing_else_hel
     // last resorts included, cannot make it valid; bisecting the edges that the violations name lets it go on.
     const GeodesicTriangulation traced =
         test::traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", "cad/joint.off", true);
-    FlipToDelaunayOptions without;
-    without.bisection_rounds = 0;
+    UntangleAndFlipOptions without;
+    without.untangling.bisection_rounds = 0;
     GeodesicTriangulation stuck_g = traced;
-    const FlipToDelaunayResult stuck = flip_to_delaunay(stuck_g, without);
+    const UntangleAndFlipResult stuck = untangle_and_flip(stuck_g, without);
     EXPECT_FALSE(stuck.valid_after);
-    EXPECT_EQ(stuck.untangle_bisections, 0);
+    EXPECT_EQ(stuck.untangling.bisections, 0);
 
     GeodesicTriangulation g = traced;
-    const FlipToDelaunayResult r = flip_to_delaunay(g);
-    EXPECT_GT(r.untangle_bisections, 0);
+    const UntangleAndFlipResult r = untangle_and_flip(g);
+    EXPECT_GT(r.untangling.bisections, 0);
     EXPECT_TRUE(r.valid_after) << describe(validate(g));
     expect_valid_with_area(g);
-    FlipToDelaunayOptions one_thread;
-    one_thread.threads = 1;
+    UntangleAndFlipOptions one_thread;
+    one_thread.untangling.threads = 1;
+    one_thread.flipping.threads = 1;
     GeodesicTriangulation again = traced;
-    flip_to_delaunay(again, one_thread);
+    untangle_and_flip(again, one_thread);
     expect_same_polylines(again, g, "1 thread");
 
     // Refinement of that G to 25 degrees met a face split that its local checks let through and that left patches
@@ -601,9 +609,9 @@ TEST(FlipToDelaunay, untangling_bisects_the_tangled_edges_where_nothing_else_hel
     const RefineResult refinement = refine(refined, to_25);
     EXPECT_TRUE(refinement.valid_after) << describe(validate(refined));
     expect_valid_with_area(refined);
-    std::cout << "[ flip     ] bundled joint at its coarsest: " << total(r.violations_before) << " -> "
+    std::cout << "[ flip     ] bundled joint at its coarsest: " << total(r.untangling.violations_before) << " -> "
               << total(r.violations_after) << " violations (" << total(stuck.violations_after)
-              << " without bisections), " << r.untangle_bisections << " edges bisected, " << g.coarse().n_faces()
+              << " without bisections), " << r.untangling.bisections << " edges bisected, " << g.coarse().n_faces()
               << " faces, " << r.seconds << " s; refined to " << refined.coarse().n_faces() << " faces, "
               << refinement.angles_after.min_deg << "°" << (refinement.whole_checks ? ", with whole checks" : "")
               << "\n";
@@ -617,13 +625,13 @@ TEST(FlipToDelaunay, untangling_again_with_the_vertices_of_bisections_kept_mends
     // At its coarsest (54 faces, genus 4), the collapses after each round of bisections take their vertices out
     // again, and G ends with 5 violations; untangling again from the G given, with those vertices kept, mends it.
     GeodesicTriangulation g = traced_as_the_pipeline_does(name, true);
-    const FlipToDelaunayResult r = flip_to_delaunay(g);
-    EXPECT_TRUE(r.untangle_kept_bisection_vertices);
-    EXPECT_GT(r.untangle_bisections, 0);
+    const UntangleAndFlipResult r = untangle_and_flip(g);
+    EXPECT_TRUE(r.untangling.kept_bisection_vertices);
+    EXPECT_GT(r.untangling.bisections, 0);
     EXPECT_TRUE(r.valid_after) << describe(validate(g));
     expect_valid_with_area(g);
-    std::cout << "[ flip     ] " << name << " at its coarsest: " << total(r.violations_before) << " -> "
-              << total(r.violations_after) << " violations, " << r.untangle_bisections << " edges bisected, "
+    std::cout << "[ flip     ] " << name << " at its coarsest: " << total(r.untangling.violations_before) << " -> "
+              << total(r.violations_after) << " violations, " << r.untangling.bisections << " edges bisected, "
               << g.coarse().n_faces() << " faces, " << r.seconds << " s\n";
 }
 

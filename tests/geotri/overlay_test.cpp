@@ -6,20 +6,21 @@
 #include <geodesic/exact_geodesic.h>
 #include <geotri/decimate.h>
 #include <geotri/edge_paths_io.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/geodesic_triangulation.h>
 #include <geotri/overlay.h>
 #include <geotri/overlay_io.h>
-#include <geotri/patch_region.h>
 #include <geotri/trace.h>
+#include <geotri/untangle_and_flip.h>
+
+#include "core/patch_region.h"
 
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
 #include <gtest/gtest.h>
 
-#include "patch_location.h"  // libgeotri/src: the patch that holds a point, found by rays
+#include "core/patch_location.h"  // libgeotri/src: the patch that holds a point, found by rays
 
 #include <Eigen/Geometry>
 #include <chrono>
@@ -541,7 +542,7 @@ GeodesicTriangulation bob_small_320() {
     TraceOptions trace_options;
     trace_options.edge_paths = &paths;
     trace(g, trace_options);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     return g;
 }
 

@@ -2,8 +2,10 @@
 // one gives, the second time from the cache; and a full cache starts again empty.
 
 #include <geotri/flip.h>
-#include <geotri/path_cache.h>
 #include <geotri_test/g_checks.h>
+
+#include "core/path_cache.h"
+#include "ops/with_workspace.h"
 
 #include <gtest/gtest.h>
 
@@ -16,14 +18,14 @@ using OpenMesh::EdgeHandle;
 TEST(PathCache, flips_planned_with_the_cache_give_the_paths_planned_without_it) {
     const GeodesicTriangulation g = test::unit_cube_g();
     PathCache cache;
-    FlipOptions cached;
+    Workspace cached;
     cached.paths = &cache;
     int planned = 0;
     for (EdgeHandle e : g.coarse().edges()) {
         const FlipPlan plain = plan_flip(g, e);
-        const FlipPlan first = plan_flip(g, e, cached);
+        const FlipPlan first = plan_flip(g, e, {}, cached);
         ASSERT_TRUE(cache.find(g.location(first.c), g.location(first.d)).has_value()) << "edge " << e.idx();
-        const FlipPlan again = plan_flip(g, e, cached);  // from the cache
+        const FlipPlan again = plan_flip(g, e, {}, cached);  // from the cache
         EXPECT_EQ(first.path, plain.path) << "edge " << e.idx();
         EXPECT_EQ(again.path, plain.path) << "edge " << e.idx();
         EXPECT_EQ(again.refusal, plain.refusal) << "edge " << e.idx();

@@ -5,10 +5,10 @@
 
 #include <geodesic/errors.h>
 #include <geotri/flip.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/reconnect.h>
 #include <geotri/split.h>
 #include <geotri/trace.h>
+#include <geotri/untangle_and_flip.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
 #include <geotri_test/g_checks.h>
@@ -332,7 +332,7 @@ TEST(Reconnect, reconnections_of_a_flipped_vertebra_leave_g_valid_or_are_refused
         load_fine_mesh(test::shared_mesh("anatomy/lumbar_vertebra_mean_2nd.ply").path));
     GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 320));
     trace(g);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     check_every_vertex_removal(g, "lumbar vertebra", 5);  // every fifth: each check builds the overlay
     check_every_face_polygon(g, "lumbar vertebra", 5);
 }

@@ -5,10 +5,10 @@
 #include <geotri/decimate.h>
 #include <geotri/fine_mesh.h>
 #include <geotri/flip.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/gtri_io.h>
 #include <geotri/refine.h>
 #include <geotri/trace.h>
+#include <geotri/untangle_and_flip.h>
 #include <geotri/validate.h>
 #include <geotri_test/fine_mesh.h>
 #include <geotri_test/g_checks.h>
@@ -202,7 +202,7 @@ TEST(Refine, attempts_ahead_of_time_give_what_attempts_one_by_one_give) {
                   << "': femur_cgal and footbones skipped\n";
     }
     for (Case& c : cases) {
-        flip_to_delaunay(c.g);
+        untangle_and_flip(c.g);
         RefineOptions options;
         options.min_angle_deg = c.angle;
         // With either, the first attempt reaches the angle on femur_cgal and footbones.
@@ -233,7 +233,7 @@ TEST(Refine, attempts_ahead_of_time_give_what_attempts_one_by_one_give) {
 TEST(Refine, the_result_is_the_same_for_any_thread_count) {
     GeodesicTriangulation given =
         traced(std::string(GEOTRI_TEST_DATA) + "/../../examples/data/lumbar_vertebra.ply", 320);
-    flip_to_delaunay(given);
+    untangle_and_flip(given);
     std::vector<std::vector<Polyline>> results;
     for (int threads : {1, 2, 3}) {
         GeodesicTriangulation g = given;
@@ -254,7 +254,7 @@ TEST(Refine, the_result_is_the_same_for_any_thread_count) {
 TEST(Refine, a_g_flipped_in_memory_refines_as_the_same_g_read_from_its_file) {
     GeodesicTriangulation flipped =
         traced(std::string(GEOTRI_TEST_DATA) + "/../../examples/data/lumbar_vertebra.ply", 320);
-    flip_to_delaunay(flipped);
+    untangle_and_flip(flipped);
     const std::filesystem::path file =
         std::filesystem::temp_directory_path() / ("geotri_refine_numbering_" + std::to_string(::getpid()) + ".gtri");
     write_gtri(file.string(), flipped);
@@ -290,7 +290,7 @@ TEST(Refine, flipped_vertebra_reaches_30_degrees) {
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation g = traced(test::shared_mesh("anatomy/lumbar_vertebra_mean_2nd.ply").path, 320);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     RefineResult r;
     check_min_angle(g, 30.0, "lumbar vertebra, 320 faces", &r);
     EXPECT_GT(r.removed_vertices, 0);
@@ -304,7 +304,7 @@ TEST(Refine, flipped_kitten_reaches_30_degrees) {
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation g = traced(test::shared_mesh("classic/kitten.obj").path, 320);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     check_min_angle(g, 30.0, "kitten, 320 faces");
 }
 
@@ -327,7 +327,7 @@ TEST(Refine, corners_above_180_degrees_are_cut_in_two) {
     // where cutting is then refused, and moves that narrow them mend only some: the spine keeps 6 of its 19.
     for (const char* mesh : {"anatomy/lumbar_spine_L2-L5_mean.ply", "classic/bunny_closed_cgal.off"}) {
         GeodesicTriangulation g = traced(test::shared_mesh(mesh).path, 320);
-        flip_to_delaunay(g);
+        untangle_and_flip(g);
         const int before = wide_corners(g);
         RefineResult cut, r;
         check_min_angle(g, 25.0, mesh, &cut, without_moves());
@@ -350,7 +350,7 @@ TEST(Refine, corners_above_180_degrees_are_cut_by_splits_inside_their_patch) {
                      << "': the real-mesh refinement test needs them";
     const char* mesh = "stress/triceratops.off";
     GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     GeodesicTriangulation without = g, refined = g;
     RefineResult r;
     check_min_angle(g, 25.0, "triceratops, 320 faces", &r, {}, &refined);
@@ -375,7 +375,7 @@ TEST(Refine, vertex_moves_reach_30_degrees_where_circumcentres_alone_cascade) {
                      << "': the real-mesh refinement test needs them";
     for (const char* mesh : {"cad/couplingdown.off", "stress/42400-IDGH.stl"}) {
         GeodesicTriangulation g = traced(test::shared_mesh(mesh).path, 320);
-        flip_to_delaunay(g);
+        untangle_and_flip(g);
         ASSERT_TRUE(validate(g).valid) << describe(validate(g));
         RefineOptions options = without_moves();
         options.min_angle_deg = 30.0;
@@ -402,7 +402,7 @@ TEST(Refine, where_vertex_moves_leave_a_few_corners_refinement_tries_without_the
                      << "': the real-mesh refinement test needs them";
     for (const char* mesh : {"anatomy/footbones.ply", "cad/boxpart.obj"}) {
         GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
-        flip_to_delaunay(g);
+        untangle_and_flip(g);
         RefineResult r;
         RefineOptions options;
         options.split_inside = false;
@@ -425,7 +425,7 @@ TEST(Refine, a_vertex_whose_geodesic_bends_at_a_saddle_of_t_moves_onto_it) {
                      << "': the real-mesh refinement test needs them";
     const char* mesh = "anatomy/brain_mni_surface.ply";
     GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     // The saddles of T that G's geodesics bend at (a third of the angle from flat, or more, as refinement counts
     // them). A shortest geodesic passes through no vertex of positive curvature.
     const geodesic::Mesh& fine = g.fine().mesh;
@@ -461,7 +461,7 @@ TEST(Refine, corners_above_180_degrees_left_at_the_vertex_cap_are_cut_at_last) {
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation g = traced(test::shared_mesh("anatomy/skull_thing74168.stl").path, 320);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     RefineOptions options = without_moves();  // with them, refinement does not cascade there
     options.min_angle_deg = 25.0;
@@ -493,7 +493,7 @@ TEST(Refine, a_refinement_nearly_done_at_the_vertex_cap_goes_on) {
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation g = traced(test::shared_mesh("anatomy/footbones.ply").path, 320);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     const std::size_t given = g.coarse().n_vertices();
     RefineOptions options = without_moves();  // with them, it stops far below the cap, one corner left
@@ -524,7 +524,7 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation g = traced(test::shared_mesh("stress/triceratops.off").path, 320);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     const GeodesicTriangulation flipped = g;
     RefineResult r;
     // With vertex moves or splits at saddles, triceratops reaches 25 degrees at the first attempt.
@@ -575,7 +575,7 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_with_a_shorter_shortest_e
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation flipped = traced(test::shared_mesh("anatomy/femur_cgal.off").path, 320);
-    flip_to_delaunay(flipped);
+    untangle_and_flip(flipped);
     RefineOptions options;
     options.min_angle_deg = 30.0;
     // With splits at saddles, a tenth leaves a single corner: the retry with more vertices curved then follows the
@@ -617,7 +617,7 @@ TEST(Refine, where_a_few_corners_are_left_it_starts_again_with_more_vertices_of_
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation flipped =
         test::traced_in_classes(test::shared_mesh("anatomy/femur_cgal.off").path, "femur_cgal", false);
-    flip_to_delaunay(flipped);
+    untangle_and_flip(flipped);
     RefineOptions options;
     options.min_angle_deg = 30.0;
     options.split_inside = false;  // with them, the shorter edge alone reaches the angle
@@ -651,7 +651,7 @@ TEST(Refine, a_vertex_that_refinement_inserted_is_taken_out_where_only_that_mend
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation g = traced(test::shared_mesh("cad/boxpart.obj").path, 320);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     RefineResult r;
     check_min_angle(g, 30.0, "boxpart, 320 faces", &r, without_moves());  // with them, a move mends it
     EXPECT_GE(r.removed_vertices, 1);
@@ -663,7 +663,7 @@ TEST(Refine, a_vertex_that_refinement_inserted_is_taken_out_where_only_that_mend
 // the G given, and only near them.
 TEST(Refine, bundled_joint_reaches_30_degrees_next_to_its_small_chamfers) {
     GeodesicTriangulation g = traced(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", 320);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     double sum = 0.0, shortest = std::numeric_limits<double>::infinity();
     for (int h = 0; h < g.fine().mesh.num_halfedges(); ++h) sum += g.fine().mesh.length(h);
     for (EdgeHandle e : g.coarse().edges()) shortest = std::min(shortest, g.length(e));
@@ -681,7 +681,7 @@ TEST(Refine, gears_reaches_30_degrees_next_to_its_spike) {
                      << "': the real-mesh refinement test needs them";
     const char* mesh = "stress/gears.stl";
     GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     double shortest = std::numeric_limits<double>::infinity();
     for (EdgeHandle e : g.coarse().edges()) shortest = std::min(shortest, g.length(e));
     ASSERT_LT(shortest, 0.01 * mean_fine_edge(g)) << "the G given has no edge far below the bound";
@@ -700,7 +700,7 @@ TEST(Refine, an_edge_is_split_at_a_saddle_of_t_that_its_geodesic_bends_at) {
                      << "': the real-mesh refinement test needs them";
     const char* mesh = "stress/cheese.off";
     GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     GeodesicTriangulation without = g;
     RefineOptions options;
@@ -737,7 +737,7 @@ TEST(Refine, saddles_of_t_that_take_curvature_out_of_a_face_get_a_vertex_of_g) {
     for (const auto& [mesh, angle] : {std::pair{"stress/man.off", 30.0}, {"stress/gears.stl", 25.0}}) {
         SCOPED_TRACE(mesh);
         GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
-        flip_to_delaunay(g);
+        untangle_and_flip(g);
         GeodesicTriangulation without = g;
         RefineResult r;
         check_min_angle(g, angle, std::string(mesh) + ", 320 faces", &r);
@@ -763,7 +763,7 @@ TEST(Refine, faces_too_small_to_refine_are_mended_by_vertex_moves_at_the_end) {
                      << "': the real-mesh refinement test needs them";
     const char* mesh = "anatomy/skull_thing74168.stl";
     GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     RefineResult r;
     check_min_angle(g, 25.0, "skull_thing74168 as the pipeline traces it, 320 faces", &r);
     EXPECT_GT(r.moved_vertices + r.removed_vertices, 0);
@@ -781,7 +781,7 @@ TEST(Refine, faces_that_nothing_else_mends_get_a_split_well_inside_their_patch_o
     for (const auto& [mesh, coarsest] : {std::pair{"stress/man.off", false}, {"stress/triceratops.off", true}}) {
         SCOPED_TRACE(mesh);
         GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, coarsest);
-        flip_to_delaunay(g);
+        untangle_and_flip(g);
         GeodesicTriangulation without = g;
         RefineResult r;
         check_min_angle(g, 25.0, std::string(mesh) + (coarsest ? ", coarsest" : ", 320 faces"), &r);
@@ -828,7 +828,7 @@ TEST(Refine, the_smallest_corner_never_gets_smaller) {
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation g = traced(test::shared_mesh("cad/boxpart.obj").path, 320);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     const double before = min_corner_deg(g);
     const GeodesicTriangulation given = g;

@@ -4,13 +4,16 @@
 
 #include <geodesic/errors.h>
 #include <geodesic/exact_geodesic.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/mesh_io.h>
 #include <geotri/relocate.h>
 #include <geotri/trace.h>
+#include <geotri/untangle_and_flip.h>
 #include <geotri/validate.h>
+
 #include <geotri_test/g_checks.h>
 #include <geotri_test/procedural_meshes.h>
+
+#include "ops/with_workspace.h"
 
 #include <gtest/gtest.h>
 
@@ -114,10 +117,12 @@ TEST(Relocate, in_star_the_corner_of_the_cube_moved_along_an_edge_gives_the_unfo
 std::pair<int, int> check_moves_in_star(const GeodesicTriangulation& given, int rings) {
     int done = 0, refused = 0;
     geodesic::ExactGeodesic propagation(given.fine().mesh);
+    Workspace workspace;
+    workspace.propagation = &propagation;
     for (VertexHandle v : given.coarse().vertices()) {
         for (int to : nearby_fine_vertices(given, v, rings)) {
             GeodesicTriangulation g = given;
-            const RelocateResult r = relocate_vertex_in_star(g, v, SurfacePoint::at_vertex(to), &propagation);
+            const RelocateResult r = relocate_vertex_in_star(g, v, SurfacePoint::at_vertex(to), workspace);
             SCOPED_TRACE("coarse vertex " + std::to_string(v.idx()) + " to fine vertex " + std::to_string(to));
             if (r.done) {
                 ++done;
@@ -146,7 +151,7 @@ TEST(Relocate, moves_in_star_on_bundled_bob_leave_g_valid_or_unchanged) {
     auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
     GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 60));
     trace(g);
-    flip_to_delaunay(g);
+    untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     const auto [done, refused] = check_moves_in_star(g, 2);
     std::cout << "[ relocate ] bob_small at 60 faces, flipped, in star: " << done << " moves done, " << refused

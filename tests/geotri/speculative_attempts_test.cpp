@@ -1,7 +1,7 @@
 // The attempts that refine() may need, run ahead of time on threads of their own or one by one when asked for (a
 // private part of libgeotri): the same results either way, cancelled ones stopped, errors where they belong.
 
-#include "speculative_attempts.h"
+#include "pipeline/speculative_attempts.h"
 
 #include <gtest/gtest.h>
 

@@ -5,16 +5,19 @@
 #include <geodesic/exact_geodesic.h>
 #include <geotri/decimate.h>
 #include <geotri/fine_mesh.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/overlay.h>
 #include <geotri/split.h>
 #include <geotri/tangent_angles.h>
 #include <geotri/trace.h>
+#include <geotri/untangle_and_flip.h>
 #include <geotri/validate.h>
+
 #include <geotri_test/fine_mesh.h>
 #include <geotri_test/g_checks.h>
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
+
+#include "ops/with_workspace.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -163,9 +166,9 @@ TEST(Split, face_split_at_a_point_outside_the_patch_is_refused_and_g_is_unchange
     EXPECT_EQ(g.coarse().n_faces(), before.coarse().n_faces());
     for (auto e : g.coarse().edges()) EXPECT_EQ(g.polyline(e), before.polyline(e));
     // A propagation said to be made beforehand must be there.
-    SplitOptions without;
+    Workspace without;
     without.propagated = true;
-    EXPECT_THROW(split_face(g, f, SurfacePoint::at_vertex(v), without), InvalidInput);
+    EXPECT_THROW(split_face(g, f, SurfacePoint::at_vertex(v), {}, without), InvalidInput);
 }
 
 /// A point strictly inside the patch of f: the centroid of its largest overlay triangle.
@@ -201,14 +204,14 @@ void check_every_split(const GeodesicTriangulation& g, const std::string& name, 
     // The edge splits once more with the overlay of all of g given, where the fallback otherwise cuts the patch
     // alone out of T: the same results, to the bit.
     const Overlay overlay = build_overlay(g);
-    SplitOptions with_overlay;
+    Workspace with_overlay;
     with_overlay.overlay = &overlay;
     for (auto e : g.coarse().edges()) {
         if (e.idx() % stride != 0) continue;
         ++edges_tried;
         GeodesicTriangulation copy = g, again = g;
         const SplitResult r = split_edge(copy, e, 0.5);
-        const SplitResult r_again = split_edge(again, e, 0.5, with_overlay);
+        const SplitResult r_again = split_edge(again, e, 0.5, {}, with_overlay);
         EXPECT_EQ(r_again.done, r.done);
         EXPECT_EQ(r_again.region_paths, r.region_paths);
         if (!r.done) {
@@ -237,18 +240,18 @@ void check_every_split(const GeodesicTriangulation& g, const std::string& name, 
         for (auto x : {f, neighbour})
             for (auto v : g.coarse().fv_range(x)) towards.stop_points.push_back(g.location(v));
         propagation.propagate({g.fine().mesh.canonical(p)}, towards);
-        SplitOptions shared;
+        Workspace shared;
         shared.propagation = &propagation;
         shared.propagated = true;
         GeodesicTriangulation again = g, other = g;
-        EXPECT_EQ(split_face(again, f, p, shared).done, r.done);
+        EXPECT_EQ(split_face(again, f, p, {}, shared).done, r.done);
         if (r.done) {
             for (auto x : copy.coarse().edges()) {
                 EXPECT_EQ(again.polyline(x).size(), copy.polyline(x).size());
                 EXPECT_NEAR(again.length(x), copy.length(x), 1e-12 * copy.length(x));
             }
         }
-        EXPECT_FALSE(split_face(other, neighbour, p, shared).done);
+        EXPECT_FALSE(split_face(other, neighbour, p, {}, shared).done);
         if (!r.done) {
             std::cout << "[ refused  ] " << r.reason << "\n";
             continue;
@@ -282,7 +285,7 @@ TEST(Split, every_split_of_a_traced_vertebra_leaves_g_valid) {
         load_fine_mesh(test::shared_mesh("anatomy/lumbar_vertebra_mean_2nd.ply").path));
     GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 120));
     trace(g);
-    flip_to_delaunay(g);  // the traced G is not valid at this size; flips make it so
+    untangle_and_flip(g);  // the traced G is not valid at this size; flips make it so
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     check_every_split(g, "lumbar vertebra", 3);  // every third: each check builds the overlay
 }
@@ -451,20 +454,21 @@ TEST(Split, a_fork_whose_geodesics_reach_their_parting_vertex_one_as_a_vertex_on
 
 TEST(Split, untangling_splits_the_forks_that_no_flip_mends) {
     GeodesicTriangulation g = traced_anchor();
-    const FlipToDelaunayResult r = flip_to_delaunay(g);
-    EXPECT_FALSE(r.valid_before);
+    const UntangleAndFlipResult r = untangle_and_flip(g);
+    EXPECT_FALSE(r.untangling.valid_before);
     EXPECT_TRUE(r.valid_after) << describe(validate(g));
-    EXPECT_GE(r.untangle_fork_splits, 1);
+    EXPECT_GE(r.untangling.fork_splits, 1);
     expect_valid_with_area(g);
     // Trials run a batch per thread; the first that helps in order is kept: the same G for any thread count.
     for (int threads : {1, 3}) {
         GeodesicTriangulation again = traced_anchor();
-        FlipToDelaunayOptions options;
-        options.threads = threads;
-        const FlipToDelaunayResult same = flip_to_delaunay(again, options);
-        EXPECT_EQ(same.untangle_flips, r.untangle_flips) << threads << " threads";
-        EXPECT_EQ(same.untangle_fork_splits, r.untangle_fork_splits) << threads << " threads";
-        EXPECT_EQ(same.untangle_rejected, r.untangle_rejected) << threads << " threads";
+        UntangleAndFlipOptions options;
+        options.untangling.threads = threads;
+    options.flipping.threads = threads;
+        const UntangleAndFlipResult same = untangle_and_flip(again, options);
+        EXPECT_EQ(same.untangling.flips, r.untangling.flips) << threads << " threads";
+        EXPECT_EQ(same.untangling.fork_splits, r.untangling.fork_splits) << threads << " threads";
+        EXPECT_EQ(same.untangling.rejected, r.untangling.rejected) << threads << " threads";
         ASSERT_EQ(again.coarse().n_edges(), g.coarse().n_edges()) << threads << " threads";
         for (auto e : g.coarse().edges()) EXPECT_EQ(again.polyline(e), g.polyline(e)) << threads << " threads";
     }

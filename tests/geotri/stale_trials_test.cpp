@@ -5,11 +5,14 @@
 #include <geodesic/exact_geodesic.h>
 #include <geotri/flip.h>
 #include <geotri/trace.h>
+
 #include <geotri_test/fine_mesh.h>
 #include <geotri_test/g_checks.h>
 #include <geotri_test/procedural_meshes.h>
 
-#include "stale_trials.h"  // libgeotri/src
+#include "ops/with_workspace.h"
+
+#include "pipeline/stale_trials.h"  // libgeotri/src
 
 #include <gtest/gtest.h>
 
@@ -28,8 +31,9 @@ GeodesicTriangulation flipped(const GeodesicTriangulation& g, EdgeHandle e, geod
     GeodesicTriangulation trial = g;
     FlipOptions unchecked;
     unchecked.check_validity = false;
-    unchecked.propagation = &propagation;
-    EXPECT_TRUE(flip(trial, e, unchecked).accepted()) << "coarse edge " << e.idx();
+    Workspace workspace;
+    workspace.propagation = &propagation;
+    EXPECT_TRUE(flip(trial, e, unchecked, workspace).accepted()) << "coarse edge " << e.idx();
     return trial;
 }
 

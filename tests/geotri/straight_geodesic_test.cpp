@@ -6,6 +6,7 @@
 #include <geodesic/exact_geodesic.h>
 #include <geodesic/mesh.h>
 #include <geotri/fine_mesh.h>
+#include <geotri/mesh_io.h>
 #include <geotri/straight_geodesic.h>
 #include <geotri/tangent_angles.h>
 #include <geotri_test/procedural_meshes.h>

@@ -13,7 +13,7 @@
 #include <geotri_test/procedural_meshes.h>
 #include <geotri_test/shared_data.h>
 
-#include "polyline_verdicts.h"  // libgeotri/src: untangling's verdicts kept between validations
+#include "check/polyline_verdicts.h"  // libgeotri/src: untangling's verdicts kept between validations
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -13,13 +13,16 @@
 #include <geotri/split.h>
 #include <geotri/trace.h>
 #include <geotri/validate.h>
+
 #include <geotri_test/fine_mesh.h>
 #include <geotri_test/g_checks.h>
 #include <geotri_test/procedural_meshes.h>
 
-#include "polyline_verdicts.h"  // libgeotri/src: untangling's verdicts kept between validations
-#include "stale_trials.h"       // libgeotri/src: the fine faces that a trial's count reads
-#include "violation_count.h"    // libgeotri/src: untangling's count of violations from what a trial changed
+#include "ops/with_workspace.h"
+
+#include "check/polyline_verdicts.h"  // libgeotri/src: untangling's verdicts kept between validations
+#include "check/violation_count.h"    // libgeotri/src: untangling's count of violations from what a trial changed
+#include "pipeline/stale_trials.h"       // libgeotri/src: the fine faces that a trial's count reads
 
 #include <gtest/gtest.h>
 
@@ -35,6 +38,13 @@
 
 namespace geotri {
 namespace {
+
+/// A workspace with the calling thread's propagation object alone, as untangling's trials have.
+Workspace calling(geodesic::ExactGeodesic& propagation) {
+    Workspace workspace;
+    workspace.propagation = &propagation;
+    return workspace;
+}
 
 using geodesic::SurfacePoint;
 using OpenMesh::EdgeHandle;
@@ -72,27 +82,26 @@ std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodes
         case 1: {
             FlipOptions unchecked;
             unchecked.check_validity = false;
-            unchecked.propagation = &propagation;
-            return flip(g, e, unchecked).accepted() ? "flip" : "";
+            return flip(g, e, unchecked, calling(propagation)).accepted() ? "flip" : "";
         }
         case 2: {
             const std::vector<Fork> forks = find_forks(g, v);
             if (forks.empty()) return "";
-            SplitOptions options;
-            options.propagation = &propagation;
-            return split_fork(g, forks.front(), options).done ? "fork split" : "";
+            return split_fork(g, forks.front(), {}, calling(propagation)).done ? "fork split" : "";
         }
         case 3: {
             CollapseOptions unchecked;
             unchecked.check_validity = false;
-            unchecked.propagation = &propagation;
-            return collapse_edge(g, coarse.halfedge_handle(e, uniform(random, 2)), unchecked).done ? "collapse" : "";
+            return collapse_edge(g, coarse.halfedge_handle(e, uniform(random, 2)), unchecked, calling(propagation)).done
+                       ? "collapse"
+                       : "";
         }
         case 4: {
             RelocateOptions unchecked;
             unchecked.check_validity = false;
-            unchecked.propagation = &propagation;
-            return relocate_vertex(g, v, SurfacePoint::at_vertex(nearby_vertex(g, v, random)), unchecked).done
+            return relocate_vertex(g, v, SurfacePoint::at_vertex(nearby_vertex(g, v, random)), unchecked,
+                                   calling(propagation))
+                           .done
                        ? "move"
                        : "";
         }
@@ -100,10 +109,11 @@ std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodes
             // Into a fine face, whose edges then cross the faces around it.
             RelocateOptions unchecked;
             unchecked.check_validity = false;
-            unchecked.propagation = &propagation;
             const int f = uniform(random, g.fine().mesh.num_faces());
-            return relocate_vertex(g, v, SurfacePoint::in_face(f, {0.2, 0.3, 0.5}), unchecked).done ? "move into a face"
-                                                                                                   : "";
+            return relocate_vertex(g, v, SurfacePoint::in_face(f, {0.2, 0.3, 0.5}), unchecked, calling(propagation))
+                           .done
+                       ? "move into a face"
+                       : "";
         }
         case 6: {
             // Its edges stay where they were: condition 1 names them, and they drop out of conditions 2 and 3.
@@ -238,12 +248,11 @@ TEST(ViolationCount, a_flip_changes_the_count_alike_after_a_change_on_other_fine
     geodesic::ExactGeodesic propagation(g.fine().mesh);
     FlipOptions unchecked;
     unchecked.check_validity = false;
-    unchecked.propagation = &propagation;
     int compared = 0, changed_count = 0;
     for (int k = 0; k < 2000 && compared < 100; ++k) {
         const EdgeHandle e(uniform(random, static_cast<int>(g.coarse().n_edges())));
         GeodesicTriangulation flipped = g;
-        if (!flip(flipped, e, unchecked).accepted()) continue;
+        if (!flip(flipped, e, unchecked, calling(propagation)).accepted()) continue;
         // The vertices within two rings of the quad, and their edges.
         std::set<int> near_vertices, near_edges;
         for (int side = 0; side < 2; ++side)

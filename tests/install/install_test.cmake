@@ -3,7 +3,7 @@
 #   cmake_consumer      configure, build and run consumer/ with find_package(geotri), finding it in PREFIX only
 #   pkgconfig_consumer  compile consumer/main.cpp with the flags of PREFIX's geotri.pc (through PKG_CONFIG), run it
 #   embed_example       configure and build examples/embed (EMBED_SOURCE_DIR) against PREFIX as cmake_consumer does,
-#                       run it on MESH, and check what it prints
+#                       run it on MESH, check what it prints, and that its .gtri is the installed tools' one
 cmake_minimum_required(VERSION 3.16)
 
 function(run)
@@ -117,6 +117,23 @@ elseif(STEP STREQUAL "embed_example")
   endforeach()
   if(NOT EXISTS "${gtri}")
     message(FATAL_ERROR "embed did not write ${gtri}")
+  endif()
+
+  # build_geodesic_triangulation() is geotri-decimate --paths, geotri-trace --paths and geotri-flip in one call:
+  # the installed tools, run one after another on the same mesh, write the same .gtri, byte for byte.
+  set(tools "${PREFIX}/bin")
+  run("${tools}/geotri-decimate" "${MESH}" -o "${build}/tools.off" --faces 100 --paths "${build}/tools.paths" --quiet)
+  run("${tools}/geotri-trace" "${MESH}" "${build}/tools.off" --paths "${build}/tools.paths" -o "${build}/tools.gtri"
+      --quiet)
+  execute_process(COMMAND "${tools}/geotri-flip" "${build}/tools.gtri" -o "${build}/tools.flip.gtri" --quiet
+    RESULT_VARIABLE result)
+  if(NOT result EQUAL 0 AND NOT result EQUAL 3)  # 3: written, but still invalid
+    message(FATAL_ERROR "geotri-flip failed (${result})")
+  endif()
+  file(SHA256 "${gtri}" embedded)
+  file(SHA256 "${build}/tools.flip.gtri" piped)
+  if(NOT embedded STREQUAL piped)
+    message(FATAL_ERROR "embed's ${gtri} differs from what geotri-decimate, geotri-trace and geotri-flip write")
   endif()
 
 else()

@@ -1,8 +1,8 @@
 #include "output.h"
 
 // Private headers of libgeotri (see tools/CMakeLists.txt).
-#include "atomic_file.h"
-#include "mesh_io_detail.h"
+#include "io/atomic_file.h"
+#include "io/mesh_io_detail.h"
 
 #include <geodesic/errors.h>
 

@@ -8,17 +8,12 @@
 
 namespace geotri {
 
-namespace geodesic {
-class ExactGeodesic;
-}
 
 struct CollapseOptions {
     /// Refuse the collapse, G unchanged, unless G is valid after it (validate() with the overlay, which costs a
     /// few passes over T). When false, the result is kept whatever it is: for untangling, which judges it on all
     /// of G itself.
     bool check_validity = true;
-    /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
-    geodesic::ExactGeodesic* propagation = nullptr;
 };
 
 struct CollapseResult {

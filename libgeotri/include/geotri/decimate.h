@@ -2,8 +2,9 @@
 // Decimation of the fine mesh T into a coarse mesh by halfedge collapses (DESIGN.md §3, geotri-decimate): the
 // coarse vertices are a subset of T's vertices at their exact positions, and every component keeps its topology.
 
+#include <geotri/edge_paths.h>
 #include <geotri/fine_mesh.h>
-#include <geotri/mesh_io.h>
+#include <geotri/mesh_data.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -69,14 +70,6 @@ struct DecimateComponent {
     int faces = 0;         ///< coarse faces reached
 };
 
-/// An edge of the coarse mesh and what the collapses made of it on T: the fine edges that were dragged into it.
-/// A geodesic of the edge keeps the decimated triangulation when it is homotopic to this path on T with the coarse
-/// vertices taken out (geodesic::straighten_path); the shortest geodesic between the ends need not be.
-struct DecimatedEdge {
-    int a = -1, b = -1;          ///< coarse vertices, a < b
-    std::vector<int> fine_path;  ///< fine vertices from fine_vertex[a] to fine_vertex[b], each next to the next on T
-};
-
 struct DecimateResult {
     /// The coarse mesh: positions copied bit for bit from T, triangles oriented as T's. Vertices are in the order of
     /// their fine indices.
@@ -103,5 +96,8 @@ DecimateResult decimate(const FineMesh& fine, const DecimateOptions& options);
 
 /// Fewest faces of a closed orientable triangulated surface of genus `genus` (Jungerman and Ringel): 4, 14, 24, ...
 int min_faces_of_genus(int genus);
+
+/// The edge paths of a decimation of `fine`. Throws InvalidInput when it kept none (DecimateOptions::edge_paths).
+EdgePaths make_edge_paths(const FineMesh& fine, const DecimateResult& decimation);
 
 }  // namespace geotri

@@ -3,27 +3,14 @@
 // coarse edge, the fine vertices that the collapses dragged into it (DecimatedEdge). They tell trace which way
 // round each edge goes. The format is specified in docs/gtri-format.md.
 
-#include <geotri/decimate.h>
+#include <geotri/edge_paths.h>
 
-#include <cstdint>
 #include <string>
-#include <vector>
 
 namespace geotri {
 
 /// The version that write_edge_paths() writes and the only one that read_edge_paths() accepts.
 constexpr int k_edge_paths_version = 1;
-
-struct EdgePaths {
-    std::string name;                ///< the file it was read from, for messages
-    std::uint64_t fine_checksum = 0; ///< of T (FineMesh::checksum)
-    int fine_vertices = 0;           ///< of T
-    int coarse_vertices = 0;
-    std::vector<DecimatedEdge> edges;  ///< sorted by (a, b), a < b
-};
-
-/// The edge paths of a decimation of `fine`. Throws InvalidInput when it kept none (DecimateOptions::edge_paths).
-EdgePaths make_edge_paths(const FineMesh& fine, const DecimateResult& decimation);
 
 /// Writes to a temporary file in the same folder and renames it. Throws IOError when the file cannot be written.
 void write_edge_paths(const std::string& path, const EdgePaths& paths);

@@ -2,7 +2,7 @@
 // The fine mesh T (DESIGN.md §1): loaded once, exactly, checked, and never changed.
 
 #include <geodesic/mesh.h>
-#include <geotri/mesh_io.h>
+#include <geotri/mesh_data.h>
 
 #include <cstdint>
 #include <string>
@@ -26,13 +26,6 @@ struct FineMesh {
 /// the geodesic arithmetic stay finite (a face's area squares its squared edge lengths, which overflows from about
 /// 1e77). The readers read any finite value exactly; this bound is the geometry's.
 constexpr double k_max_coordinate = 1e75;
-
-/// Reads `path` exactly (read_mesh) and checks it (make_fine_mesh). Throws IOError for a file problem,
-/// TopologyError for a mesh that is not closed, manifold and oriented, and InvalidInput for bad numbers (a
-/// coordinate that is not finite or beyond 1e75, a mesh or component of zero area; faces of zero area are allowed);
-/// every message starts with the path and says what is wrong and how much of it ("14 boundary edges", "vertex 812
-/// is non-manifold").
-FineMesh load_fine_mesh(const std::string& path);
 
 /// Checks the arrays as load_fine_mesh does; `name` prefixes the messages.
 FineMesh make_fine_mesh(MeshData data, const std::string& name);

@@ -5,16 +5,12 @@
 // the flip criteria and the statistics need.
 
 #include <geotri/geodesic_triangulation.h>
-#include <geotri/path_cache.h>
 
 #include <array>
 #include <string>
 
 namespace geotri {
 
-namespace geodesic {
-class ExactGeodesic;
-}
 struct Overlay;
 
 /// The corner angle of face(h) at from_vertex(h): the counter-clockwise angle at that vertex's location from the
@@ -46,17 +42,9 @@ struct FlipOptions {
     /// the flip is done whenever it is topologically possible and a c-d geodesic exists: for callers that judge
     /// the result on all of G themselves (untangling an invalid G).
     bool check_validity = true;
-    /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
-    geodesic::ExactGeodesic* propagation = nullptr;
     /// With check_validity: when the shortest c-d geodesic leaves the two patches, try the shortest path inside
     /// them (plan_flip_in_region()).
     bool region_fallback = true;
-    /// The overlay of this same G for the fallback, or null: the two patches alone are then cut out of T, which
-    /// costs what they hold (PatchRegion).
-    const Overlay* overlay = nullptr;
-    /// Shortest c-d geodesics found before, to use again instead of a propagation (the same path), and where the
-    /// ones found now are kept; none when null.
-    PathCache* paths = nullptr;
 };
 
 /// A flip computed but not yet done: the new geodesic and the corners it makes.

@@ -85,4 +85,14 @@ private:
     std::array<std::size_t, 3> reserved_{};
 };
 
+/// The coarse mesh of arrays as read_mesh() gives them, in the same vertex and face order, with the points as given.
+/// Throws TopologyError("NAME: problem") unless it is a closed, edge- and vertex-manifold, consistently oriented
+/// triangle mesh without isolated vertices; InvalidInput for indices out of range or repeated within a face.
+CoarseMesh make_coarse_mesh(const MeshData& data, const std::string& name);
+
+/// G as read_gtri() gives it back after write_gtri(): the same vertices and faces in the same order, the same
+/// locations and polylines, and its edges and halfedges numbered anew from the faces. Flips and splits renumber
+/// them otherwise, and what follows G's numbering (refine()'s choices) then differs from a G read from its file.
+GeodesicTriangulation renumbered_as_read(const GeodesicTriangulation& g);
+
 }  // namespace geotri

@@ -30,11 +30,6 @@ struct GtriHeader {
 /// a location (after trace()). Throws InvalidInput when they do not hold, IOError when the file cannot be written.
 void write_gtri(const std::string& path, const GeodesicTriangulation& g);
 
-/// G as read_gtri() gives it back after write_gtri(): the same vertices and faces in the same order, the same
-/// locations and polylines, and its edges and halfedges numbered anew from the faces. Flips and splits renumber
-/// them otherwise, and what follows G's numbering (refine()'s choices) then differs from a G read from its file.
-GeodesicTriangulation renumbered_as_read(const GeodesicTriangulation& g);
-
 /// Reads the first lines of `path` only (version, fine mesh path and checksum).
 /// Throws IOError("PATH: line N: problem") for an unreadable or malformed header or an unknown version.
 GtriHeader read_gtri_header(const std::string& path);

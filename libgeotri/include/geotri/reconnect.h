@@ -11,12 +11,6 @@
 
 namespace geotri {
 
-namespace geodesic {
-class ExactGeodesic;
-}
-class PropagationPool;
-struct Overlay;
-
 struct ReconnectOptions {
     /// Refuse, G unchanged, unless all of G is valid afterwards (validate() with the overlay, which costs a few
     /// passes over T). When false, the local checks below are all: for a valid G they keep it valid.
@@ -26,19 +20,12 @@ struct ReconnectOptions {
     double required_gain = -1.0;
     /// Polygons with more corners than this are refused (the dynamic programming is cubic, the diagonals quadratic).
     int max_corners = 12;
-    /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
-    geodesic::ExactGeodesic* propagation = nullptr;
-    /// Threads for the diagonals' propagations (one per corner); 0: as many as OpenMP likes. The calling thread
-    /// uses `propagation`, each other thread one of `propagations`, or makes its own when that is null. The result
-    /// is the same for any count.
+    /// Threads for the diagonals' propagations (one per corner); 0: as many as OpenMP likes. The result is the same
+    /// for any count.
     int threads = 0;
-    PropagationPool* propagations = nullptr;
     /// When the shortest geodesic between two corners leaves the polygon, try the shortest path inside the faces'
-    /// patches, which needs the overlay.
+    /// patches.
     bool region_fallback = true;
-    /// The overlay of this same G for the fallback, or null: the faces' patches alone are then cut out of T, which
-    /// costs what they hold (PatchRegion).
-    const Overlay* overlay = nullptr;
 };
 
 struct ReconnectResult {

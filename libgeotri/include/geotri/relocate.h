@@ -10,16 +10,10 @@
 
 namespace geotri {
 
-namespace geodesic {
-class ExactGeodesic;
-}
-
 struct RelocateOptions {
     /// Refuse the move, G unchanged, unless G is valid after it (validate() with the overlay). When false, the
     /// result is kept whatever it is: for untangling, which judges it on all of G itself.
     bool check_validity = true;
-    /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
-    geodesic::ExactGeodesic* propagation = nullptr;
 };
 
 struct RelocateResult {
@@ -39,10 +33,8 @@ RelocateResult relocate_vertex(GeodesicTriangulation& g, OpenMesh::VertexHandle 
 /// order of v's edges with a corner between each two, reaches its other end strictly inside the star's corner
 /// there, and meets neither the star's outer polylines nor the other new geodesics. For a valid G whose star of v
 /// is a disk (its ring vertices distinct), that keeps G valid, at the cost of one propagation from p towards the
-/// ring. `propagation`, when given, is reused (a propagation object over g.fine().mesh). Throws InvalidInput when
-/// v is not a vertex of G or p is not a point of T.
-RelocateResult relocate_vertex_in_star(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const SurfacePoint& p,
-                                       geodesic::ExactGeodesic* propagation = nullptr);
+/// ring. Throws InvalidInput when v is not a vertex of G or p is not a point of T.
+RelocateResult relocate_vertex_in_star(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const SurfacePoint& p);
 
 /// The vertices of T within `rings` edges of v's location (of the fine edge's or face's vertices when it is not at
 /// a vertex), nearest rings first and by index within a ring, without v's location itself and without the

@@ -10,24 +10,11 @@
 
 namespace geotri {
 
-namespace geodesic {
-class ExactGeodesic;
-}
-struct Overlay;
 
 struct SplitOptions {
-    /// A propagation object over g.fine().mesh to reuse across calls (saves its setup); one is made when null.
-    geodesic::ExactGeodesic* propagation = nullptr;
     /// When the shortest geodesic from the new vertex leaves the patch that it must run in, try the shortest path
     /// inside that patch (PatchRegion).
     bool region_fallback = true;
-    /// The overlay of this same G for the fallback, or null: the patch alone is then cut out of T, which costs
-    /// what the patch holds (PatchRegion).
-    const Overlay* overlay = nullptr;
-    /// `propagation` already holds a goal-directed propagation from the split point (in canonical form) whose stop
-    /// points include every coarse vertex that the split joins it to: the split uses it instead of propagating
-    /// again. For a caller that tries one point in several patches.
-    bool propagated = false;
     /// false: split_edge() takes the shortest geodesics from the new vertex whatever they do, and checks nothing;
     /// for untangling, which judges the result on all of G.
     bool checked = true;

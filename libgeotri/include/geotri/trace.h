@@ -57,9 +57,4 @@ struct TraceResult {
 /// do not fit T or the coarse mesh. Progress goes through options.progress only.
 TraceResult trace(GeodesicTriangulation& g, const TraceOptions& options = {});
 
-/// The coarse mesh of arrays as read_mesh() gives them, in the same vertex and face order, with the points as given.
-/// Throws TopologyError("NAME: problem") unless it is a closed, edge- and vertex-manifold, consistently oriented
-/// triangle mesh without isolated vertices; InvalidInput for indices out of range or repeated within a face.
-CoarseMesh make_coarse_mesh(const MeshData& data, const std::string& name);
-
 }  // namespace geotri

@@ -1,0 +1,102 @@
+#include "pipeline/stale_trials.h"
+
+#include <geotri/tangent_angles.h>
+
+#include <algorithm>
+#include <utility>
+
+namespace geotri::detail {
+
+namespace {
+
+// G keeps its locations and polyline points in canonical form (GeodesicTriangulation::set_location(),
+// set_polyline()), as the count reads them: the faces that hold a stored point are those that the count sees.
+void add_faces_of(const geodesic::Mesh& mesh, const SurfacePoint& p, std::vector<int>& out) {
+    for (int f : faces_holding(mesh, p)) out.push_back(f);
+}
+
+bool has_edge(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) {
+    return static_cast<std::size_t>(e.idx()) < g.coarse().n_edges() && !g.coarse().status(e).deleted();
+}
+
+bool has_vertex(const GeodesicTriangulation& g, OpenMesh::VertexHandle v) {
+    return static_cast<std::size_t>(v.idx()) < g.coarse().n_vertices() && !g.coarse().status(v).deleted();
+}
+
+/// Whether edge e is the same in both: present in both, with the same polyline object, length and ends, or in
+/// neither.
+bool same_edge(const GeodesicTriangulation& a, const GeodesicTriangulation& b, OpenMesh::EdgeHandle e) {
+    const bool in_a = has_edge(a, e);
+    if (in_a != has_edge(b, e)) return false;
+    if (!in_a) return true;
+    const CoarseMesh& ca = a.coarse();
+    const CoarseMesh& cb = b.coarse();
+    const OpenMesh::HalfedgeHandle ha = ca.halfedge_handle(e, 0), hb = cb.halfedge_handle(e, 0);
+    return &a.polyline(e) == &b.polyline(e) && a.length(e) == b.length(e) &&
+           ca.from_vertex_handle(ha) == cb.from_vertex_handle(hb) && ca.to_vertex_handle(ha) == cb.to_vertex_handle(hb);
+}
+
+/// The faces of e's polyline in g, and of its ends' locations.
+void add_edge_faces(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e, std::vector<int>& out) {
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    const CoarseMesh& coarse = g.coarse();
+    for (const SurfacePoint& p : g.polyline(e)) add_faces_of(mesh, p, out);
+    // Its ends' corners change with it.
+    for (int k = 0; k < 2; ++k)
+        add_faces_of(mesh, g.location(coarse.to_vertex_handle(coarse.halfedge_handle(e, k))), out);
+}
+
+}  // namespace
+
+std::vector<int> StaleTrials::changed_faces(const GeodesicTriangulation& g, const GeodesicTriangulation& trial) {
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    std::vector<int> faces;
+    const std::size_t edges = std::max(g.coarse().n_edges(), trial.coarse().n_edges());
+    for (std::size_t i = 0; i < edges; ++i) {
+        const OpenMesh::EdgeHandle e(static_cast<int>(i));
+        if (same_edge(g, trial, e)) continue;
+        for (const GeodesicTriangulation* side : {&g, &trial})
+            if (has_edge(*side, e)) add_edge_faces(*side, e, faces);
+    }
+    const std::size_t vertices = std::max(g.coarse().n_vertices(), trial.coarse().n_vertices());
+    for (std::size_t i = 0; i < vertices; ++i) {
+        const OpenMesh::VertexHandle v(static_cast<int>(i));
+        if (has_vertex(g, v) && has_vertex(trial, v) && g.location(v) == trial.location(v)) continue;
+        // Where a vertex moves, whether its edges still start at it (condition 1), and so take part in conditions 2
+        // and 3, changes too, even with their polylines unchanged.
+        for (const GeodesicTriangulation* side : {&g, &trial}) {
+            if (!has_vertex(*side, v)) continue;
+            add_faces_of(mesh, side->location(v), faces);
+            for (OpenMesh::HalfedgeHandle h : side->coarse().voh_range(v))
+                add_edge_faces(*side, side->coarse().edge_handle(h), faces);
+        }
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
+}
+
+void StaleTrials::changed(const std::vector<int>& faces) {
+    ++changes_;
+    for (int f : faces) {
+        if (static_cast<std::size_t>(f) >= changed_at_.size()) changed_at_.resize(static_cast<std::size_t>(f) + 1, 0);
+        changed_at_[static_cast<std::size_t>(f)] = changes_;
+    }
+}
+
+void StaleTrials::failed(const std::array<int, 3>& key, std::vector<int> faces, int operations) {
+    failures_[key] = Failure{std::move(faces), operations, changes_};
+}
+
+std::optional<int> StaleTrials::known_failure(const std::array<int, 3>& key) const {
+    const auto it = failures_.find(key);
+    if (it == failures_.end()) return std::nullopt;
+    const Failure& failure = it->second;
+    for (int f : failure.faces) {
+        const auto at = static_cast<std::size_t>(f);
+        if (at < changed_at_.size() && changed_at_[at] > failure.epoch) return std::nullopt;
+    }
+    return failure.operations;
+}
+
+}  // namespace geotri::detail
