@@ -29,8 +29,7 @@ public:
 
     // Halfedge navigation.
     static int face_of(int h) { return h / 3; }
-    // One unsigned remainder and a select: the signed form with two remainders took 5% of a propagation's
-    // instructions.
+    // One unsigned remainder and a select: these are on the hot path of every propagation.
     static int next(int h) { return static_cast<unsigned>(h) % 3u == 2u ? h - 2 : h + 1; }
     static int prev(int h) { return static_cast<unsigned>(h) % 3u == 0u ? h + 2 : h - 1; }
     int tail(int h) const { return halfedges_[h].tail; }
@@ -84,8 +83,7 @@ public:
 private:
     std::vector<Eigen::Vector3d> positions_;
     std::vector<std::array<int, 3>> triangles_;
-    /// What crossing a face reads of its halfedges, side by side: the three of a face fill two cache lines, where
-    /// separate arrays of lengths, apexes, twins and triangles took four or five.
+    /// What crossing a face reads of its halfedges, side by side: the three of a face fill two cache lines.
     struct alignas(32) HalfedgeRecord {
         Eigen::Vector2d apex;
         double length = 0.0;

@@ -29,8 +29,7 @@ struct SurfacePoint {
     static SurfacePoint on_edge(int v0, int v1, double t);
     static SurfacePoint in_face(int f, const std::array<double, 3>& bary);
 
-    /// Exact equality of kind and of the kind's fields. Inline: polylines and locations are compared by the
-    /// thousand in every check of G.
+    /// Exact equality of kind and of the kind's fields.
     bool operator==(const SurfacePoint& other) const {
         if (kind != other.kind) return false;
         switch (kind) {

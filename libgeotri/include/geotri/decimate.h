@@ -17,12 +17,12 @@ namespace geotri {
 /// priority and the quality checks, and OpenMesh's collapse()) with the same checks; they differ in how they find
 /// the next collapse.
 enum class DecimateStrategy {
-    /// OpenMesh's DecimaterT as it is: always the cheapest collapse, from a priority queue. The reference; slower,
-    /// mostly because OpenMesh's is_collapse_ok() creates and drops a named property on every call.
+    /// OpenMesh's DecimaterT as it is: always the cheapest collapse, from a priority queue. The reference; slower
+    /// than multiple_choice.
     priority_queue,
     /// The cheapest of a few randomly drawn collapses (the multiple-choice scheme of OpenMesh's McDecimaterT, with a
     /// seeded generator) while the mesh is much larger than the target, then always the cheapest collapse from a
-    /// priority queue of our own for the last stretch; both test the link condition directly.
+    /// priority queue of its own for the last stretch; both test the link condition directly.
     multiple_choice,
 };
 
@@ -64,7 +64,7 @@ struct DecimateComponent {
     int fine_faces = 0;
     int euler_characteristic = 0;  ///< V - E + F of the component, the same before and after
     int genus = 0;
-    int min_faces = 0;     ///< fewest faces that any triangulation of this topology has (4 for a sphere, 14 for a torus)
+    int min_faces = 0;     ///< fewest faces of any triangulation of this topology (4 for a sphere, 14 for a torus)
     int target_faces = 0;  ///< this component's share of the target
     int vertices = 0;      ///< coarse vertices reached
     int faces = 0;         ///< coarse faces reached

@@ -17,11 +17,9 @@ namespace geotri {
 
 struct BackoffOptions {
     /// Back off from a component while its geodesics have more violations of conditions 2 and 3 (geodesics that
-    /// cross, or leave their vertex out of order) than this many per coarse edge on it. stress/cheese.off (genus
-    /// 133), stopped at 1174 faces for a target of 320, has 0.65 and took minutes to untangle; at 2348 faces 0.10,
-    /// untangled in 8 s. Every other shared mesh reaches 320 faces (with at most 0.12 there); stopped by the
-    /// topology (a target of 4 faces), they have 0-0.22 but femur_cgal, skull_thing74168, knot1, boxpart and
-    /// 42400-IDGH (0.42-0.90).
+    /// cross, or leave their vertex out of order) than this many per coarse edge on it. On a surface of high genus,
+    /// a coarse mesh that the topology stopped far above its target can have well over 0.5 and take minutes to
+    /// untangle; at twice as many faces it typically has 0.1-0.2, as most coarse meshes do, and untangles quickly.
     double max_tangled_per_edge = 1.0 / 3.0;
     int max_rounds = 4;  ///< at most this many decimations after the first
     int threads = 0;     ///< for tracing; 0: as many as OpenMP likes (the result is the same for any count)

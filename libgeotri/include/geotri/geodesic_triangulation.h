@@ -34,8 +34,8 @@ using CoarseMesh = OpenMesh::TriMesh_ArrayKernelT<CoarseTraits>;
 /// replaced): an operation that may be refused can work on a copy, and copying costs no polyline. Assigning to a G,
 /// by copy or by move, copies into the coarse mesh that it has, which stays the same object (references to
 /// coarse() stay valid), in its storage where both have only the properties that every G has (assign()).
-/// Constructing one by move takes the other's coarse mesh without a copy (OpenMesh's meshes have no move operations:
-/// their "moves" copied everything); the G moved from may then only be assigned to or destroyed.
+/// Constructing one by move takes the other's coarse mesh without a copy (OpenMesh's meshes have no move operations
+/// of their own: moving one copies it); the G moved from may then only be assigned to or destroyed.
 class GeodesicTriangulation {
 public:
     /// Takes the coarse mesh as it is; locations and polylines start empty (location: vertex -1; polyline: none).

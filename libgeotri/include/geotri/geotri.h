@@ -2,6 +2,7 @@
 // geotri's public API in one include, and its one-call entry point: a closed triangle mesh in, a valid geodesic
 // triangulation G out.
 
+#include <geodesic/errors.h>
 #include <geotri/collapse.h>
 #include <geotri/decimate.h>
 #include <geotri/decimate_backoff.h>

@@ -1,9 +1,9 @@
 #pragma once
-// Refinement of a valid G (issue 4): longest-edge bisection down to a geodesic edge length or a face count, then
+// Refinement of a valid G: longest-edge bisection down to a geodesic edge length or a face count, then
 // Delaunay refinement to a minimum corner angle by inserting geodesic circumcentres, moving vertices within their
 // stars where that mends a corner. Every step is a split or a move whose local checks keep G valid or refuse it
-// (split.h, relocate.h), and flips towards geodesic Delaunay follow each one; where those checks miss (splits
-// have), refine() starts again with every step checked on all of G.
+// (split.h, relocate.h), and flips towards geodesic Delaunay follow each one; where those checks miss and G comes
+// out invalid, refine() starts again with every step checked on all of G (RefineResult::whole_checks).
 
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/geodesic_triangulation.h>
@@ -65,7 +65,7 @@ struct RefineOptions {
     bool split_inside = true;
     /// A guard on the vertices that each phase may add (0: none for bisection; for the minimum angle, four times
     /// the faces of G, plus 100, doubled once when it is reached with fewer than 5% of the faces below the angle):
-    /// where angle refinement cascades instead of converging (it does on some curved meshes at 25-30 degrees), it
+    /// where angle refinement cascades instead of converging (as it can on curved meshes at 25-30 degrees), it
     /// stops there and says so. Past the default cap, the corners above 180 degrees left are still cut (see
     /// min_angle_deg); a cap given here is never passed.
     int max_new_vertices = 0;

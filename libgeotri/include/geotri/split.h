@@ -53,7 +53,7 @@ SplitResult split_face(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const S
 /// A fork at coarse vertex a: `count` consecutive edges leaving a (counter-clockwise from `first`) whose geodesics
 /// run together from a for their first `common` points, the last of which is where they part (shortest geodesics
 /// from one point part only at saddle vertices of T). The corners between them are zero, so G is invalid there;
-/// trace makes such forks on CAD parts.
+/// trace() can make such forks, typically on CAD models.
 struct Fork {
     OpenMesh::HalfedgeHandle first;
     int count = 0;

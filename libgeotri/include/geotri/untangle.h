@@ -18,8 +18,8 @@ struct UntangleOptions {
     int max_operations = 10000;
     /// With at most 16 violations of conditions 1-3 left and nothing else helping: 1 also tries each collapse of an
     /// edge at a vertex that they name, judged after untangling what it leaves around the vertex kept; 2 then lets
-    /// that inner untangling end with such collapses too. 0: neither. They mend a few meshes at their coarsest and
-    /// cost minutes where they mend nothing, unless thorough_budget bounds them.
+    /// that inner untangling end with such collapses too. 0: neither. They can mend a G at its coarsest that nothing
+    /// else mends, and can cost minutes where they mend nothing, unless thorough_budget bounds them.
     int thorough = 2;
     /// The work that those collapses may do, in windows of propagation (geodesic::ExactGeodesic::
     /// windows_created_total(), the same on any machine and for any thread count), checked between trials: once
