@@ -370,7 +370,7 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
             GeodesicTriangulation one_thread = traced_g;
             UntangleAndFlipOptions options;
             options.untangling.threads = 1;
-    options.flipping.threads = 1;
+            options.flipping.threads = 1;
             untangle_and_flip(one_thread, options);
             expect_same_polylines(one_thread, g, name);
         }
@@ -391,8 +391,9 @@ TEST(FlipToDelaunay, traced_real_meshes_are_untangled_and_improved) {
                   << (r.untangling.valid_before ? "valid" : "invalid") << " -> " << (r.valid_after ? "valid" : "INVALID")
                   << " (" << total(r.untangling.violations_before) << " -> " << total(r.violations_after)
                   << " violations), " << r.untangling.flips << " untangle flips + " << r.untangling.fork_splits
-                  << " fork splits + " << r.untangling.collapses << " collapses + " << r.untangling.relocations << " moves + " << r.flipping.flips << " improve flips, min corner " << r.angles_before.min_deg << "° -> " << r.angles_after.min_deg
-                  << "°, " << r.seconds << " s\n";
+                  << " fork splits + " << r.untangling.collapses << " collapses + " << r.untangling.relocations
+                  << " moves + " << r.flipping.flips << " improve flips, min corner " << r.angles_before.min_deg
+                  << "° -> " << r.angles_after.min_deg << "°, " << r.seconds << " s\n";
     }
     std::cout << "[ flip     ] " << made_valid << " of " << invalid << " invalid traced G became valid\n";
 }
@@ -402,7 +403,7 @@ GeodesicTriangulation traced_as_the_pipeline_does(const std::string& name, bool 
     return test::traced_in_classes(test::shared_mesh(name).path, name, coarsest);
 }
 
-TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_t) {
+TEST(Untangle, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_t) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the test needs cad/boxpart.obj";
@@ -424,7 +425,7 @@ TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_
     for (int threads : {1, 3}) {
         GeodesicTriangulation again = traced;
         plain.untangling.threads = threads;
-    plain.flipping.threads = threads;
+        plain.flipping.threads = threads;
         const UntangleAndFlipResult same = untangle_and_flip(again, plain);
         EXPECT_EQ(same.untangling.meeting_splits, r.untangling.meeting_splits) << threads << " threads";
         expect_same_polylines(again, g, std::to_string(threads) + " threads");
@@ -434,7 +435,7 @@ TEST(FlipToDelaunay, untangling_splits_geodesics_where_they_meet_at_a_vertex_of_
               << r.untangling.fork_splits << " fork splits, " << r.seconds << " s\n";
 }
 
-TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_nothing_else_helps) {
+TEST(Untangle, untangling_moves_a_vertex_further_or_flips_two_edges_when_nothing_else_helps) {
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir()
                      << "': the test needs cad/rotor.off, classic/eight.off and stress/42400-IDGH.stl";
@@ -461,7 +462,7 @@ TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_n
             GeodesicTriangulation again = traced;
             UntangleAndFlipOptions with;
             with.untangling.threads = threads;
-    with.flipping.threads = threads;
+            with.flipping.threads = threads;
             untangle_and_flip(again, with);
             expect_same_polylines(again, g, c.name + ", " + std::to_string(threads) + " threads");
         }
@@ -471,7 +472,7 @@ TEST(FlipToDelaunay, untangling_moves_a_vertex_further_or_flips_two_edges_when_n
     }
 }
 
-TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only_after_untangling_around_it) {
+TEST(Untangle, thorough_untangling_collapses_an_edge_where_that_helps_only_after_untangling_around_it) {
     const char* name = "stress/anchor_dense.off";
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir() << "': the test needs "
@@ -509,7 +510,7 @@ TEST(FlipToDelaunay, thorough_untangling_collapses_an_edge_where_that_helps_only
               << " without), " << r.untangling.collapses << " collapses, " << r.seconds << " s\n";
 }
 
-TEST(FlipToDelaunay, thorough_untangling_stops_where_its_budget_of_work_is_spent_the_same_for_any_thread_count) {
+TEST(Untangle, thorough_untangling_stops_where_its_budget_of_work_is_spent_the_same_for_any_thread_count) {
     const char* name = "stress/anchor_dense.off";
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir() << "': the test needs "
@@ -541,7 +542,7 @@ TEST(FlipToDelaunay, thorough_untangling_stops_where_its_budget_of_work_is_spent
     for (int threads : {2, 3}) {
         GeodesicTriangulation again = traced;
         tight.untangling.threads = threads;
-    tight.flipping.threads = threads;
+        tight.flipping.threads = threads;
         const UntangleAndFlipResult other = untangle_and_flip(again, tight);
         EXPECT_TRUE(other.untangling.thorough_budget_spent) << threads << " threads";
         EXPECT_EQ(other.untangling.rejected, r.untangling.rejected) << threads << " threads";
@@ -550,7 +551,7 @@ TEST(FlipToDelaunay, thorough_untangling_stops_where_its_budget_of_work_is_spent
     }
 }
 
-TEST(FlipToDelaunay, by_default_untangling_nests_those_collapses_and_makes_femur_cgal_valid_at_320_faces) {
+TEST(Untangle, by_default_untangling_nests_those_collapses_and_makes_femur_cgal_valid_at_320_faces) {
     const char* name = "anatomy/femur_cgal.off";
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir() << "': the test needs "
@@ -577,7 +578,7 @@ TEST(FlipToDelaunay, by_default_untangling_nests_those_collapses_and_makes_femur
               << r.untangling.collapses << " collapses, " << r.seconds << " s\n";
 }
 
-TEST(FlipToDelaunay, untangling_bisects_the_tangled_edges_where_nothing_else_helps) {
+TEST(Untangle, untangling_bisects_the_tangled_edges_where_nothing_else_helps) {
     // The bundled joint (genus 2) at its coarsest, 32 faces, traced in the decimation's classes: untangling, its
     // last resorts included, cannot make it valid; bisecting the edges that the violations name lets it go on.
     const GeodesicTriangulation traced =
@@ -617,7 +618,7 @@ TEST(FlipToDelaunay, untangling_bisects_the_tangled_edges_where_nothing_else_hel
               << "\n";
 }
 
-TEST(FlipToDelaunay, untangling_again_with_the_vertices_of_bisections_kept_mends_fertility_at_its_coarsest) {
+TEST(Untangle, untangling_again_with_the_vertices_of_bisections_kept_mends_fertility_at_its_coarsest) {
     const char* name = "classic/fertility.off";
     if (test::shared_data_dir().empty())
         GTEST_SKIP() << "shared meshes not found at '" << test::configured_shared_data_dir() << "': the test needs "

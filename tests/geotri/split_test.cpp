@@ -464,7 +464,7 @@ TEST(Split, untangling_splits_the_forks_that_no_flip_mends) {
         GeodesicTriangulation again = traced_anchor();
         UntangleAndFlipOptions options;
         options.untangling.threads = threads;
-    options.flipping.threads = threads;
+        options.flipping.threads = threads;
         const UntangleAndFlipResult same = untangle_and_flip(again, options);
         EXPECT_EQ(same.untangling.flips, r.untangling.flips) << threads << " threads";
         EXPECT_EQ(same.untangling.fork_splits, r.untangling.fork_splits) << threads << " threads";
