@@ -185,7 +185,7 @@ std::string scientific(double x) {
     return buffer;
 }
 
-// CPU time of the process, as the reference figures in the issue are: this machine is shared, so wall time is noise.
+// CPU time of the process, as VTP's published figures are: this machine is shared, so wall time is noise.
 double cpu_seconds() {
     timespec t{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs the propagation benchmark on the meshes of the libgeodesic issue and prints a Markdown table on stdout.
+# Runs the propagation benchmark on generated meshes (spheres, a torus, a cube, a flat grid) and shared real ones,
+# and prints a Markdown table on stdout.
 #
 #   bench/run.sh [--no-cgal] [--repeat N] [--keep-windows]
 #

@@ -1,5 +1,5 @@
 // geotri-flip: makes a geodesic triangulation valid by flips (untangle), then flips it towards geodesic Delaunay
-// (improve), and writes the result (issue 4).
+// (improve), and writes the result.
 //
 //   geotri-flip IN.gtri -o OUT.gtri [--criterion angle|length] [--thorough LEVEL] [--fine PATH] [--threads N]
 //               [--quiet] [--json]

@@ -1,5 +1,5 @@
 // geotri-refine: refines a valid geodesic triangulation by longest-edge bisection (to a geodesic edge length or a
-// face count) and then by inserting circumcentres (to a minimum corner angle), and writes the result (issue 4).
+// face count) and then by inserting circumcentres (to a minimum corner angle), and writes the result.
 //
 //   geotri-refine IN.gtri -o OUT.gtri [--max-length L] [--faces N] [--min-angle A] [--no-flip] [--fine PATH]
 //                 [--quiet] [--json]

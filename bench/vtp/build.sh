@@ -17,7 +17,7 @@ trap 'rm -rf "$work"' EXIT
 cp "$1"/*.h "$work"/
 
 # Its vertex queue is a std::set ordered by distance alone, so a vertex whose distance equals another's is never
-# queued: order ties by vertex id (the issue's figures are those of VTP with this fixed).
+# queued: order ties by vertex id (VTP's published figures assume this order).
 python3 - "$work/geodesic_mesh_elements.h" <<'PY'
 import sys
 path = sys.argv[1]

@@ -1,4 +1,4 @@
-// Edge collapse (issue 4): on the cube's G, where the new geodesics' lengths follow from unfolding; refusals that
+// Edge collapse: on the cube's G, where the new geodesics' lengths follow from unfolding; refusals that
 // keep the topology; and every collapse of traced G on real meshes, checked with validate() (with the overlay and
 // the patch areas).
 

@@ -1,4 +1,4 @@
-// Flips of coarse edges and untangle_and_flip() (issue 4): hand-made G on a procedural cube and sphere, checked
+// Flips of coarse edges and untangle_and_flip(): hand-made G on a procedural cube and sphere, checked
 // against closed forms and validate(); and traced G on real meshes, checked with validate() after every change.
 
 #include <geodesic/errors.h>

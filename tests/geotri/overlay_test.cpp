@@ -648,7 +648,7 @@ TEST(PatchAlone, a_patch_pinched_at_a_vertex_of_t_is_refused) {
     EXPECT_THROW(PatchRegion(g, {face}), InvalidInput);
 }
 
-// ---- The patch that holds a point, found by rays (libgeotri/src/patch_location.h) -------------------------------
+// ---- The patch that holds a point, found by rays (libgeotri/src/core/patch_location.h) -------------------------------
 
 /// Every fine vertex, a point on every fine edge and one inside every fine face, each located by rays among all
 /// patches of g and among a patch's neighbours, against the patches of the whole overlay that hold it (their

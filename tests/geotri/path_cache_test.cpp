@@ -1,4 +1,4 @@
-// The kept shortest geodesics of flips (issue 4): a flip planned with a cache gives the path that planning without
+// The kept shortest geodesics of flips: a flip planned with a cache gives the path that planning without
 // one gives, the second time from the cache; and a full cache starts again empty.
 
 #include <geotri/flip.h>

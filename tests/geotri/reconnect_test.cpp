@@ -1,4 +1,4 @@
-// Small polygon reconnection (issue 4): on the G of a cube and of a box, where the polygons unfold into the plane and the best
+// Small polygon reconnection: on the G of a cube and of a box, where the polygons unfold into the plane and the best
 // triangulation follows from planar geometry (an enumeration of every triangulation, sharing no code with the
 // operator); refusals that leave G unchanged; and every vertex star of traced and flipped G on real meshes, checked
 // with validate() (with the overlay and the patch areas).

@@ -1,4 +1,4 @@
-// Refinement (issue 4): longest-edge bisection and Delaunay refinement to a minimum corner angle, on a hand-made G
+// Refinement: longest-edge bisection and Delaunay refinement to a minimum corner angle, on a hand-made G
 // of a procedural cube (closed-form lengths) and on traced G of real meshes, each checked with validate().
 
 #include <geodesic/errors.h>

@@ -1,4 +1,4 @@
-// Vertex relocation (issue 4): on the cube's G, where the retraced geodesics' lengths follow from unfolding; the
+// Vertex relocation: on the cube's G, where the retraced geodesics' lengths follow from unfolding; the
 // checked move leaves G valid or unchanged, judged on all of G or, inside the vertex's star, by local checks (on
 // the cube and on a real mesh, with validate() as the judge); refusals; and the vertices of T that untangling tries.
 

@@ -1,4 +1,4 @@
-// Edge and face splits (issue 4): a hand-made G on a procedural cube, checked against closed forms, and traced G on
+// Edge and face splits: a hand-made G on a procedural cube, checked against closed forms, and traced G on
 // real meshes, checked with validate() (with the overlay and the patch areas) after every split.
 
 #include <geodesic/errors.h>

@@ -1,4 +1,4 @@
-// Untangling's memory of the flips that failed (libgeotri/src/stale_trials.h): a failure stays known until a change
+// Untangling's memory of the flips that failed (libgeotri/src/pipeline/stale_trials.h): a failure stays known until a change
 // touches one of the fine faces that its trial read. Whether that is enough, that a flip changes the count alike
 // wherever G changed elsewhere, is checked against validate() in violation_count_test.cpp.
 

@@ -1,4 +1,4 @@
-// Untangling's judge (libgeotri/src/violation_count.h): the violations of conditions 1-3 of a trial copy of G,
+// Untangling's judge (libgeotri/src/check/violation_count.h): the violations of conditions 1-3 of a trial copy of G,
 // counted from what the trial changed, against validate() on the whole copy. Random operations of every kind that
 // untangling tries, and hand-made changes that break the conditions in other ways (polylines reversed, erased or
 // moved to another edge, vertices moved without their edges, two vertices at one point), on G that random walks
