@@ -6,6 +6,8 @@
 #include <geodesic/mesh.h>
 #include <geotri/geodesic_triangulation.h>
 
+#include "check/tolerances.h"
+
 #include <Eigen/Core>
 
 #include <string>
@@ -13,9 +15,6 @@
 #include <vector>
 
 namespace geotri::detail {
-
-/// Two points of condition 3 within this many times the local fine edge length are the same point.
-constexpr double k_meet_tolerance = 1e-12;
 
 /// A point that takes part in condition 3: point `index` of the polyline of coarse edge `feature` (feature < number
 /// of edges), or the location of coarse vertex `feature - number of edges` (index 0).

@@ -1,4 +1,5 @@
 #include "check/local_checks.h"
+#include "check/tolerances.h"
 #include "core/plane_segments.h"
 
 #include <geodesic/constants.h>
@@ -19,9 +20,6 @@ using geodesic::Mesh;
 using geodesic::PointKind;
 
 namespace {
-
-// As validate(): points closer than this times the local fine edge length are the same point.
-constexpr double k_meet_tolerance = 1e-12;
 
 /// A piece of a polyline inside one fine face, in the frame of the face's first halfedge: a segment, or a single
 /// point (a polyline point on a fine vertex, entered in every face around the vertex so that a path that passes
