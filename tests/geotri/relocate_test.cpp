@@ -117,8 +117,7 @@ TEST(Relocate, in_star_the_corner_of_the_cube_moved_along_an_edge_gives_the_unfo
 std::pair<int, int> check_moves_in_star(const GeodesicTriangulation& given, int rings) {
     int done = 0, refused = 0;
     geodesic::ExactGeodesic propagation(given.fine().mesh);
-    Workspace workspace;
-    workspace.propagation = &propagation;
+    const Workspace workspace = propagation_only(propagation);
     for (VertexHandle v : given.coarse().vertices()) {
         for (int to : nearby_fine_vertices(given, v, rings)) {
             GeodesicTriangulation g = given;

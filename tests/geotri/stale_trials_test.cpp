@@ -31,9 +31,7 @@ GeodesicTriangulation flipped(const GeodesicTriangulation& g, EdgeHandle e, geod
     GeodesicTriangulation trial = g;
     FlipOptions unchecked;
     unchecked.check_validity = false;
-    Workspace workspace;
-    workspace.propagation = &propagation;
-    EXPECT_TRUE(flip(trial, e, unchecked, workspace).accepted()) << "coarse edge " << e.idx();
+    EXPECT_TRUE(flip(trial, e, unchecked, propagation_only(propagation)).accepted()) << "coarse edge " << e.idx();
     return trial;
 }
 

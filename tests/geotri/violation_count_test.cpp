@@ -39,13 +39,6 @@
 namespace geotri {
 namespace {
 
-/// A workspace with the calling thread's propagation object alone, as untangling's trials have.
-Workspace calling(geodesic::ExactGeodesic& propagation) {
-    Workspace workspace;
-    workspace.propagation = &propagation;
-    return workspace;
-}
-
 using geodesic::SurfacePoint;
 using OpenMesh::EdgeHandle;
 using OpenMesh::HalfedgeHandle;
@@ -82,17 +75,17 @@ std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodes
         case 1: {
             FlipOptions unchecked;
             unchecked.check_validity = false;
-            return flip(g, e, unchecked, calling(propagation)).accepted() ? "flip" : "";
+            return flip(g, e, unchecked, propagation_only(propagation)).accepted() ? "flip" : "";
         }
         case 2: {
             const std::vector<Fork> forks = find_forks(g, v);
             if (forks.empty()) return "";
-            return split_fork(g, forks.front(), {}, calling(propagation)).done ? "fork split" : "";
+            return split_fork(g, forks.front(), {}, propagation_only(propagation)).done ? "fork split" : "";
         }
         case 3: {
             CollapseOptions unchecked;
             unchecked.check_validity = false;
-            return collapse_edge(g, coarse.halfedge_handle(e, uniform(random, 2)), unchecked, calling(propagation)).done
+            return collapse_edge(g, coarse.halfedge_handle(e, uniform(random, 2)), unchecked, propagation_only(propagation)).done
                        ? "collapse"
                        : "";
         }
@@ -100,7 +93,7 @@ std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodes
             RelocateOptions unchecked;
             unchecked.check_validity = false;
             return relocate_vertex(g, v, SurfacePoint::at_vertex(nearby_vertex(g, v, random)), unchecked,
-                                   calling(propagation))
+                                   propagation_only(propagation))
                            .done
                        ? "move"
                        : "";
@@ -110,7 +103,7 @@ std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodes
             RelocateOptions unchecked;
             unchecked.check_validity = false;
             const int f = uniform(random, g.fine().mesh.num_faces());
-            return relocate_vertex(g, v, SurfacePoint::in_face(f, {0.2, 0.3, 0.5}), unchecked, calling(propagation))
+            return relocate_vertex(g, v, SurfacePoint::in_face(f, {0.2, 0.3, 0.5}), unchecked, propagation_only(propagation))
                            .done
                        ? "move into a face"
                        : "";
@@ -252,7 +245,7 @@ TEST(ViolationCount, a_flip_changes_the_count_alike_after_a_change_on_other_fine
     for (int k = 0; k < 2000 && compared < 100; ++k) {
         const EdgeHandle e(uniform(random, static_cast<int>(g.coarse().n_edges())));
         GeodesicTriangulation flipped = g;
-        if (!flip(flipped, e, unchecked, calling(propagation)).accepted()) continue;
+        if (!flip(flipped, e, unchecked, propagation_only(propagation)).accepted()) continue;
         // The vertices within two rings of the quad, and their edges.
         std::set<int> near_vertices, near_edges;
         for (int side = 0; side < 2; ++side)

@@ -29,14 +29,13 @@ struct Workspace {
     /// The overlay of this same G, from which patches are cut out of T; when null, the patches alone are cut out
     /// of T, at a cost that grows with the patches rather than with T.
     const Overlay* overlay = nullptr;
-
-    /// This workspace with `calling` as the calling thread's propagation object.
-    Workspace with_propagation(geodesic::ExactGeodesic& calling) const {
-        Workspace w = *this;
-        w.propagation = &calling;
-        w.propagated = false;
-        return w;
-    }
 };
+
+/// A workspace that holds the calling thread's propagation object alone.
+inline Workspace propagation_only(geodesic::ExactGeodesic& propagation) {
+    Workspace workspace;
+    workspace.propagation = &propagation;
+    return workspace;
+}
 
 }  // namespace geotri

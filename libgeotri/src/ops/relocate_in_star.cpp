@@ -75,9 +75,8 @@ RelocateResult relocate_vertex_in_star(GeodesicTriangulation& g, VertexHandle v,
     }
     SplitOptions options;
     options.region_fallback = false;  // the star is one region, not a patch per spoke (Spoke::patch stays unset)
-    Workspace propagation_only;
-    propagation_only.propagation = workspace.propagation;
-    std::string why = detail::find_spokes(g, to, spokes, options, propagation_only, true);
+    // The propagation object alone: nothing has propagated from `to` yet, and the star needs no overlay.
+    std::string why = detail::find_spokes(g, to, spokes, options, Workspace{workspace.propagation}, true);
     if (why.empty()) why = detail::spokes_apart(mesh, to, spokes);
     if (!why.empty()) {
         result.reason = name + ": " + why;

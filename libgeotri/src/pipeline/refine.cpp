@@ -546,7 +546,7 @@ private:
             const EdgeHandle opposite = g_.coarse().edge_handle(g_.coarse().next_halfedge_handle(corner.second));
             for (double fraction : {0.5, 0.4, 0.6}) {
                 auto split = [&](GeodesicTriangulation& trial) {
-                    return split_edge(trial, opposite, fraction, split_options(true), propagation_only());
+                    return split_edge(trial, opposite, fraction, split_options(true), propagation_only(propagation_));
                 };
                 if (try_split(split, floor, min_length, result_.edge_splits, floor) == Tried::kept) return true;
             }
@@ -620,12 +620,6 @@ private:
         return options;
     }
 
-    /// What the splits, moves and removals use: the calling thread's propagation object alone.
-    Workspace propagation_only() {
-        Workspace workspace;
-        workspace.propagation = &propagation_;
-        return workspace;
-    }
 
     /// Without whole checks, true: the local checks of the operations are what keeps G valid.
     bool valid_whole(const GeodesicTriangulation& trial) const { return !whole_checks_ || validate(trial).valid; }
@@ -792,7 +786,7 @@ private:
     /// One try of split_edge_somewhere(): e split at `fraction`.
     Tried split_edge_at(EdgeHandle e, double fraction, double min_length, bool region_fallback) {
         auto split = [&](GeodesicTriangulation& trial) {
-            return split_edge(trial, e, fraction, split_options(region_fallback), propagation_only());
+            return split_edge(trial, e, fraction, split_options(region_fallback), propagation_only(propagation_));
         };
         return try_split(split, std::max(floor_at(e), keep_above_), min_length, result_.edge_splits);
     }
@@ -865,7 +859,7 @@ private:
             options.required_gain = flip_options_.margin;
             // The pool's objects, as for the flips: a team whose other thread made its own propagation object over
             // T at every removal tried (a pass over the mesh) took as much wall time as one thread.
-            Workspace workspace = propagation_only();
+            Workspace workspace = propagation_only(propagation_);
             workspace.propagations = &pool_;
             options.threads = flip_options_.threads;
             options.region_fallback = false;
@@ -1007,9 +1001,7 @@ private:
         const std::optional<SurfacePoint> target = c.target ? c.target : star_centroid(c.vertex);
         if (!target) return;
         GeodesicTriangulation& trial = trial_copy(*c.slot);
-        Workspace calling;
-        calling.propagation = &propagation;
-        if (!relocate_vertex_in_star(trial, c.vertex, *target, calling).done) {
+        if (!relocate_vertex_in_star(trial, c.vertex, *target, propagation_only(propagation)).done) {
             untouched(*c.slot);  // relocate_vertex_in_star() refuses before it changes G
             return;
         }
@@ -1251,7 +1243,7 @@ private:
                 for (std::size_t i = 1; i + 1 < line.size(); ++i) {
                     if (line[i].kind != geodesic::PointKind::vertex || line[i].vertex != cone) continue;
                     auto split = [&](GeodesicTriangulation& trial) {
-                        return split_edge_at_point(trial, e, i, split_options(false), propagation_only());
+                        return split_edge_at_point(trial, e, i, split_options(false), propagation_only(propagation_));
                     };
                     if (try_split(split, keep_above_, 0.0, result_.edge_splits) != Tried::kept) return false;
                     coarse_at_fine_vertex_.insert(cone);  // as insert_in_one_of() records it for a face split
@@ -1351,7 +1343,7 @@ private:
         if (const std::optional<FaceHandle> holder = detail::patch_holding(g_, faces, p))
             candidates = holder->is_valid() ? std::vector<FaceHandle>{*holder} : std::vector<FaceHandle>{};
         const SplitOptions options = split_options(false);
-        Workspace workspace = propagation_only();
+        Workspace workspace = propagation_only(propagation_);
         for (std::size_t i = 0; i < candidates.size(); ++i) {
             auto split = [&](GeodesicTriangulation& trial) {
                 return split_face(trial, candidates[i], p, options, workspace);

@@ -52,13 +52,6 @@ std::vector<int> candidate_edges(const CoarseMesh& coarse, const ValidationRepor
     return {edges.begin(), edges.end()};
 }
 
-/// A workspace that holds nothing but the calling thread's propagation object.
-Workspace using_propagation(geodesic::ExactGeodesic& propagation) {
-    Workspace workspace;
-    workspace.propagation = &propagation;
-    return workspace;
-}
-
 /// How far untangling moves a coarse vertex: to the vertices of T within this many edges of it.
 constexpr int k_relocation_rings = 2;
 /// How far untangling moves a vertex when nothing nearer helps: on a torus decimated to its coarsest (rotor,
@@ -141,14 +134,14 @@ int settle_around(GeodesicTriangulation& g, const SplitResult& split, geodesic::
             kept = keep_if_lower([&](GeodesicTriangulation& trial) {
                 FlipOptions unchecked;
                 unchecked.check_validity = false;
-                return flip(trial, e, unchecked, using_propagation(propagation)).accepted();
+                return flip(trial, e, unchecked, propagation_only(propagation)).accepted();
             });
         }
         for (auto it = vertices.begin(); it != vertices.end() && !kept; ++it)
             for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(*it))) {
                 OpenMesh::VertexHandle split_vertex;
                 kept = keep_if_lower([&](GeodesicTriangulation& trial) {
-                    const SplitResult split = split_fork(trial, fork, {}, using_propagation(propagation));
+                    const SplitResult split = split_fork(trial, fork, {}, propagation_only(propagation));
                     split_vertex = split.vertex;
                     return split.done;
                 });
@@ -251,7 +244,7 @@ ValidationReport violations_naming(const GeodesicTriangulation& g, ValidationRep
 CollapseResult collapse_unchecked(GeodesicTriangulation& g, HalfedgeHandle h, geodesic::ExactGeodesic& propagation) {
     CollapseOptions unchecked;
     unchecked.check_validity = false;
-    return collapse_edge(g, h, unchecked, using_propagation(propagation));
+    return collapse_edge(g, h, unchecked, propagation_only(propagation));
 }
 
 /// One untangling move: `run` does it on a copy of G with the propagation object of its thread, and returns how
@@ -538,7 +531,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
             auto run = [e](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation, const CountViolations&) {
                 FlipOptions unchecked;
                 unchecked.check_validity = false;
-                return flip(trial, e, unchecked, using_propagation(propagation)).accepted() ? 1 : 0;
+                return flip(trial, e, unchecked, propagation_only(propagation)).accepted() ? 1 : 0;
             };
             moves.push_back({run, {k_flip, std::min(a, b), std::max(a, b)}});
         }
@@ -550,7 +543,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
             for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(index))) {
                 auto run = [fork](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                                  const CountViolations& count) {
-                    const SplitResult split = split_fork(trial, fork, {}, using_propagation(propagation));
+                    const SplitResult split = split_fork(trial, fork, {}, propagation_only(propagation));
                     return settle_around(trial, split, propagation, count);
                 };
                 moves.push_back({run, {k_fork_split, index, g.coarse().to_vertex_handle(fork.first).idx()}});
@@ -572,7 +565,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
                 int done = 0;
                 for (int index : candidate_vertices(trial.coarse(), current)) {
                     const std::vector<Fork> forks = find_forks(trial, OpenMesh::VertexHandle(index));
-                    if (!forks.empty() && split_fork(trial, forks.front(), {}, using_propagation(propagation)).done) ++done;
+                    if (!forks.empty() && split_fork(trial, forks.front(), {}, propagation_only(propagation)).done) ++done;
                 }
                 if (done == 0) break;
                 splits += done;
@@ -594,7 +587,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
                 SplitOptions unchecked;
                 unchecked.checked = false;
                 const SplitResult split =
-                    split_edge_at_point(trial, e, index, unchecked, using_propagation(propagation));
+                    split_edge_at_point(trial, e, index, unchecked, propagation_only(propagation));
                 return settle_around(trial, split, propagation, count);
             };
             moves.push_back({run, {k_meeting_split, e.idx(), static_cast<int>(index)}});
@@ -640,7 +633,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
                     RelocateOptions unchecked;
                     unchecked.check_validity = false;
                     return relocate_vertex(trial, v, SurfacePoint::at_vertex(to), unchecked,
-                                           using_propagation(propagation))
+                                           propagation_only(propagation))
                                    .done
                                ? 1
                                : 0;
@@ -665,7 +658,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
                                                const CountViolations&) {
                         FlipOptions unchecked;
                         unchecked.check_validity = false;
-                        const Workspace workspace = using_propagation(propagation);
+                        const Workspace workspace = propagation_only(propagation);
                         if (!flip(trial, first, unchecked, workspace).accepted()) return 0;
                         return flip(trial, second, unchecked, workspace).accepted() ? 2 : 0;
                     };
@@ -750,7 +743,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
             GeodesicTriangulation split_g = next;  // a split that throws may have changed what it was given
             try {
                 const SplitResult split = split_edge(split_g, split_g.coarse().edge_handle(h), 0.5, unchecked,
-                                                      using_propagation(propagation));
+                                                      propagation_only(propagation));
                 if (!split.done) continue;
                 bisection_vertices.push_back(split_g.location(split.vertex));
                 next = std::move(split_g);
