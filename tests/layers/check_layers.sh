@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Checks that libgeotri's layers depend only downwards: core <- io, core <- check <- ops <- pipeline (pipeline may
-# use io too). Each source under libgeotri/src/LAYER/ may include the private headers ("LAYER/name.h") and the
-# public headers (<geotri/name.h>) of its own layer and of the layers below it, never of one above. A public
-# header belongs to the layer of the source that implements it (name.cpp), or to the one named below.
+# Checks that libgeotri's layers depend only downwards: core <- io, core <- check <- ops <- pipeline <- curved
+# (pipeline and curved may use io too). Each source under libgeotri/src/LAYER/ may include the private headers
+# ("LAYER/name.h") and the public headers (<geotri/name.h>) of its own layer and of the layers below it, never of
+# one above. A public header belongs to the layer of the source that implements it (name.cpp), or to the one named
+# below.
 #
 #   tests/layers/check_layers.sh [REPOSITORY_ROOT]
 #
@@ -20,6 +21,7 @@ declare -A allowed=(
   [check]="core check"
   [ops]="core check ops"
   [pipeline]="core io check ops pipeline"
+  [curved]="core io check ops pipeline curved"
 )
 # Public headers with no source of their own name: the plain data types, and the entry point.
 declare -A header_layer=([mesh_data]=core [edge_paths]=core [geotri]=pipeline)
@@ -86,4 +88,4 @@ done
 if ((upward)); then
   exit 1
 fi
-echo "libgeotri: every include runs downwards (core <- io, core <- check <- ops <- pipeline)"
+echo "libgeotri: every include runs downwards (core <- io, core <- check <- ops <- pipeline <- curved)"

@@ -1,0 +1,74 @@
+#pragma once
+// Curved high-order elements on a valid G (DESIGN.md §5): one Lagrange triangle of order p per coarse face, every
+// node an exact point of T, each element certified valid and within a proven distance of its patch.
+
+#include <geotri/geodesic_triangulation.h>
+
+#include <Eigen/Core>
+
+#include <limits>
+#include <vector>
+
+namespace geotri {
+
+struct CurveOptions {
+    int order = 3;             ///< p, in [1, 8]
+    int max_subdivisions = 6;  ///< levels of de Casteljau subdivision where the Bernstein bounds do not decide
+    /// For the elements, made in parallel; 0: as many as OpenMP likes. The result is the same for any count.
+    int threads = 0;
+};
+
+/// What the Bernstein bounds of J_n = (x_u × x_v) · n proved over an element.
+enum class Certification {
+    valid,      ///< J_n > 0 everywhere
+    invalid,    ///< J_n <= 0 at a point
+    undecided,  ///< neither, within CurveOptions::max_subdivisions
+};
+
+/// "valid", "invalid" or "undecided".
+const char* to_string(Certification certification);
+
+struct ElementCertificate {
+    /// J with the normal of the plane through the element's three corners: what gmsh checks.
+    Certification plane = Certification::undecided;
+    /// J with the normal of each face of T that the element stands for, over the part of the element that maps to
+    /// that face: the element never folds over the surface.
+    Certification surface = Certification::undecided;
+    /// Bounds of min J / max J over the element, with the plane's normal: quality_lower <= the true ratio <=
+    /// quality_upper. quality_lower is 0 unless `plane` is valid.
+    double quality_lower = 0.0, quality_upper = 0.0;
+    /// A proven upper bound of the two-sided Hausdorff distance between the element and its patch, in the units of
+    /// T (divide by CurvedMesh::diagonal for the relative bound).
+    double distance = std::numeric_limits<double>::infinity();
+};
+
+struct CurvedElement {
+    OpenMesh::FaceHandle face;
+    /// The (p + 1)(p + 2)/2 nodes in gmsh's and VTK's order: corners 0, 1, 2 (the from-vertices of the face's
+    /// halfedges from halfedge_handle(face)); the inner nodes of edge 0→1 from 0, of 1→2 from 1, of 2→0 from 2;
+    /// then the interior nodes, recursively, as a triangle of order p - 3.
+    std::vector<SurfacePoint> nodes;
+    std::vector<Eigen::Vector3d> positions;  ///< of the nodes, in the same order
+    ElementCertificate certificate;
+};
+
+struct CurvedMesh {
+    int order = 0;
+    double diagonal = 0.0;  ///< of T's bounding box
+    std::vector<CurvedElement> elements;  ///< one per coarse face, in face order
+};
+
+/// The curved elements of G, certified. Corners are G's vertex locations; the p - 1 inner nodes of each edge lie
+/// on its polyline at arc-length fractions k/p, shared by both faces of the edge; the interior nodes are the points
+/// of T that the patch's map onto the reference triangle (boundary by arc length, inside by Tutte's embedding with
+/// mean-value weights, linear on each overlay triangle) sends to the equispaced nodes. On a flat patch an element
+/// is exactly its straight triangle. Deterministic, the same for any thread count. Preconditions: G valid (its
+/// overlay's patches are disks). Throws InvalidInput for an order outside [1, 8] or a patch that is not a disk, and
+/// NumericalError when a patch's map cannot be solved.
+CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& options = {});
+
+/// The positions of the gmsh-ordered nodes of order p as multi-indices (i, j, k), i + j + k = p, each the weights
+/// of corners 0, 1, 2 times p.
+std::vector<std::array<int, 3>> gmsh_node_order(int order);
+
+}  // namespace geotri

@@ -1,0 +1,206 @@
+#include <geodesic/errors.h>
+#include <geotri/curved_elements.h>
+#include <geotri/overlay.h>
+#include <geotri/split.h>
+
+#include "core/thread_count.h"
+#include "curved/bernstein_triangle.h"
+#include "curved/patch_parameterization.h"
+#include "curved/sign_bounds.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <exception>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace geotri {
+
+namespace {
+
+using detail::coefficient_count;
+using detail::multi_index_position;
+
+constexpr int k_max_order = 8;
+
+/// The worse of two verdicts: invalid, then undecided, then valid.
+Certification worse(Certification a, Certification b) {
+    if (a == Certification::invalid || b == Certification::invalid) return Certification::invalid;
+    if (a == Certification::undecided || b == Certification::undecided) return Certification::undecided;
+    return Certification::valid;
+}
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// The inner nodes of every coarse edge: at arc-length fractions k/p of its polyline, k = 1 .. p - 1, from the
+/// from-vertex of its first halfedge.
+std::vector<std::vector<SurfacePoint>> edge_nodes(const GeodesicTriangulation& g, int order) {
+    std::vector<std::vector<SurfacePoint>> nodes(g.coarse().n_edges());
+    for (OpenMesh::EdgeHandle e : g.coarse().edges())
+        for (int k = 1; k < order; ++k)
+            nodes[static_cast<std::size_t>(e.idx())].push_back(point_along(g, e, static_cast<double>(k) / order));
+    return nodes;
+}
+
+/// The element of coarse face f, certified.
+CurvedElement make_element(const GeodesicTriangulation& g, const Overlay& overlay, OpenMesh::FaceHandle f,
+                           const std::vector<std::vector<SurfacePoint>>& on_edges, const CurveOptions& options) {
+    const CoarseMesh& coarse = g.coarse();
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    const int p = options.order;
+    const std::vector<std::array<int, 3>> indices = detail::multi_indices(p);
+    std::vector<SurfacePoint> nodes(indices.size());
+    std::vector<Eigen::Vector3d> positions(indices.size());
+    auto set = [&](int j, int k, const SurfacePoint& point) {
+        nodes[multi_index_position(j, k)] = point;
+        positions[multi_index_position(j, k)] = mesh.point(point);
+    };
+
+    std::array<OpenMesh::HalfedgeHandle, 3> sides;
+    {
+        int s = 0;
+        for (OpenMesh::HalfedgeHandle h : coarse.fh_range(f)) sides[static_cast<std::size_t>(s++)] = h;
+    }
+    // Corner s is the from-vertex of side s; side s runs from corner s to corner s + 1. Multi-index (i, j, k) is
+    // the weights of corners 0, 1, 2 times p.
+    for (std::size_t s = 0; s < 3; ++s) {
+        const OpenMesh::HalfedgeHandle h = sides[s];
+        const std::array<int, 3> corner_index{s == 0 ? p : 0, s == 1 ? p : 0, s == 2 ? p : 0};
+        set(corner_index[1], corner_index[2], g.location(coarse.from_vertex_handle(h)));
+        const OpenMesh::EdgeHandle e = coarse.edge_handle(h);
+        const bool along = coarse.halfedge_handle(e, 0) == h;
+        for (int m = 1; m < p; ++m) {
+            const SurfacePoint& point = on_edges[static_cast<std::size_t>(e.idx())][static_cast<std::size_t>(
+                along ? m - 1 : p - m - 1)];
+            // m/p of the way from corner s to corner s + 1.
+            std::array<int, 3> index{0, 0, 0};
+            index[s] = p - m;
+            index[(s + 1) % 3] = m;
+            set(index[1], index[2], point);
+        }
+    }
+    const detail::PatchParameterization map(g, overlay, f);
+    for (const std::array<int, 3>& index : indices) {
+        if (index[0] == 0 || index[1] == 0 || index[2] == 0) continue;
+        const std::optional<detail::PatchParameterization::Preimage> at = map.preimage(detail::node_of(index, p));
+        if (!at)
+            throw NumericalError("coarse face " + std::to_string(f.idx()) +
+                                 ": an interior node has no preimage in its patch's map");
+        nodes[multi_index_position(index[1], index[2])] = at->point;
+        positions[multi_index_position(index[1], index[2])] = at->position;
+    }
+
+    CurvedElement element;
+    element.face = f;
+    ElementCertificate& certificate = element.certificate;
+    const std::vector<Eigen::Vector3d> x = detail::bernstein_from_lagrange(positions, p);
+
+    const Eigen::Vector3d& x0 = positions[multi_index_position(0, 0)];
+    const Eigen::Vector3d plane_normal =
+        (positions[multi_index_position(p, 0)] - x0).cross(positions[multi_index_position(0, p)] - x0);
+    const detail::SignBounds plane = detail::bound_sign(detail::jacobian_coefficients(x, p, plane_normal), 2 * (p - 1),
+                                        options.max_subdivisions);
+    certificate.plane = plane.verdict;
+    if (plane.verdict == Certification::valid) certificate.quality_lower = plane.min_lower / plane.max_upper;
+    if (plane.max_value > 0.0) certificate.quality_upper = std::max(0.0, plane.min_value / plane.max_value);
+
+    // Over each overlay triangle of the patch, x and the patch's map P (linear there) as polynomials of the
+    // triangle's own barycentric coordinates: the control points of x - P bound the distance, and the Jacobian of
+    // x there has the sign of J with the fine face's normal (the triangle's map is orientation-preserving).
+    certificate.surface = Certification::valid;
+    certificate.distance = 0.0;
+    for (const detail::PatchParameterization::Triangle& t : map.triangles()) {
+        const std::vector<Eigen::Vector3d> restricted =
+            detail::restrict_to_triangle(x, p, t.reference[0], t.reference[1], t.reference[2]);
+        for (std::size_t c = 0; c < indices.size(); ++c) {
+            const std::array<int, 3>& index = indices[c];
+            const Eigen::Vector3d linear =
+                (index[0] * t.positions[0] + index[1] * t.positions[1] + index[2] * t.positions[2]) / p;
+            certificate.distance = std::max(certificate.distance, (restricted[c] - linear).norm());
+        }
+        const double area = cross2(t.reference[1] - t.reference[0], t.reference[2] - t.reference[0]);
+        if (area == 0.0) continue;  // all three on one side: no part of the element maps there
+        if (area < 0.0) {
+            certificate.surface = worse(certificate.surface, Certification::undecided);
+            continue;
+        }
+        const std::array<int, 3>& face = mesh.triangle(t.fine_face);
+        const Eigen::Vector3d face_normal = (mesh.position(face[1]) - mesh.position(face[0]))
+                                                .cross(mesh.position(face[2]) - mesh.position(face[0]));
+        if (face_normal.squaredNorm() == 0.0) continue;  // a face of T of zero area has no normal to fold over
+        const detail::SignBounds surface = detail::bound_sign(detail::jacobian_coefficients(restricted, p, face_normal), 2 * (p - 1),
+                                              options.max_subdivisions);
+        certificate.surface = worse(certificate.surface, surface.verdict);
+    }
+
+    for (const std::array<int, 3>& index : gmsh_node_order(p)) {
+        element.nodes.push_back(nodes[multi_index_position(index[1], index[2])]);
+        element.positions.push_back(positions[multi_index_position(index[1], index[2])]);
+    }
+    return element;
+}
+
+}  // namespace
+
+const char* to_string(Certification certification) {
+    switch (certification) {
+        case Certification::valid: return "valid";
+        case Certification::invalid: return "invalid";
+        case Certification::undecided: return "undecided";
+    }
+    return "?";
+}
+
+std::vector<std::array<int, 3>> gmsh_node_order(int order) {
+    if (order < 0) return {};
+    if (order == 0) return {{0, 0, 0}};
+    std::vector<std::array<int, 3>> nodes{{order, 0, 0}, {0, order, 0}, {0, 0, order}};
+    for (int m = 1; m < order; ++m) nodes.push_back({order - m, m, 0});
+    for (int m = 1; m < order; ++m) nodes.push_back({0, order - m, m});
+    for (int m = 1; m < order; ++m) nodes.push_back({m, 0, order - m});
+    for (const std::array<int, 3>& inner : gmsh_node_order(order - 3))
+        nodes.push_back({inner[0] + 1, inner[1] + 1, inner[2] + 1});
+    return nodes;
+}
+
+CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& options) {
+    if (options.order < 1 || options.order > k_max_order)
+        throw InvalidInput("curve_elements: the order " + std::to_string(options.order) + " is outside [1, " +
+                           std::to_string(k_max_order) + "]");
+    if (options.max_subdivisions < 0)
+        throw InvalidInput("curve_elements: max_subdivisions is negative");
+    CurvedMesh curved;
+    curved.order = options.order;
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    Eigen::Vector3d lo = mesh.position(0), hi = lo;
+    for (const Eigen::Vector3d& x : mesh.positions()) {
+        lo = lo.cwiseMin(x);
+        hi = hi.cwiseMax(x);
+    }
+    curved.diagonal = (hi - lo).norm();
+
+    const Overlay overlay = build_overlay(g);
+    const std::vector<std::vector<SurfacePoint>> on_edges = edge_nodes(g, options.order);
+    const auto faces = static_cast<int>(g.coarse().n_faces());
+    std::vector<CurvedElement> elements(static_cast<std::size_t>(faces));
+    // Each face's failure is kept apart, and the first face's is thrown: the same for any thread count.
+    std::vector<std::exception_ptr> failures(static_cast<std::size_t>(faces));
+    const int threads = detail::team_size(options.threads);
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+    for (int f = 0; f < faces; ++f) {
+        try {
+            elements[static_cast<std::size_t>(f)] =
+                make_element(g, overlay, OpenMesh::FaceHandle(f), on_edges, options);
+        } catch (...) {
+            failures[static_cast<std::size_t>(f)] = std::current_exception();
+        }
+    }
+    for (const std::exception_ptr& failure : failures)
+        if (failure) std::rethrow_exception(failure);
+    curved.elements = std::move(elements);
+    return curved;
+}
+
+}  // namespace geotri
