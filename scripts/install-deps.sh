@@ -1,21 +1,23 @@
 #!/usr/bin/env bash
 # Installs the Debian packages that geotri needs to build and test, and only those that are missing.
 #
-#   scripts/install-deps.sh            compiler, CMake, Eigen, OpenMesh, GoogleTest, CLI11
+#   scripts/install-deps.sh            compiler, CMake, Eigen, OpenMesh, GoogleTest, CLI11, and the independent readers
+#                                      that the tests check curved elements with: gmsh, meshio and VTK for Python
 #   scripts/install-deps.sh --bench    the same, plus CGAL for the benchmarks
 #   scripts/install-deps.sh --render   the same, plus VTK's Python bindings and Xvfb for examples/render.py
 #
 # Runs apt-get (update, then install) only when something is missing: as root, or through sudo otherwise.
 set -euo pipefail
 
-packages=(cmake g++ make libeigen3-dev libopenmesh-dev libgtest-dev libcli11-dev)
+packages=(cmake g++ make libeigen3-dev libopenmesh-dev libgtest-dev libcli11-dev
+          gmsh python3-gmsh python3-meshio python3-vtk9)
 
 for arg in "$@"; do
   case "$arg" in
     --bench) packages+=(libcgal-dev) ;;
     --render) packages+=(python3-vtk9 xvfb xauth libgl1-mesa-dri) ;;
     -h | --help)
-      sed -n '2,8s/^# \{0,1\}//p' "$0"
+      sed -n '2,9s/^# \{0,1\}//p' "$0"
       exit 0
       ;;
     *)

@@ -103,6 +103,13 @@ double distance_to_surface(const geodesic::Mesh& mesh, const Point3& x) {
     return best;
 }
 
+/// The positions of an element's nodes, in its (gmsh's) order.
+std::vector<Point3> positions_of(const CurvedMesh& curved, const CurvedElement& element) {
+    std::vector<Point3> positions;
+    for (int node : element.nodes) positions.push_back(curved.positions[static_cast<std::size_t>(node)]);
+    return positions;
+}
+
 // ---- Bernstein arithmetic against closed forms -----------------------------------------------------------------
 
 /// A cubic polynomial in (u, v), and its values at the equispaced nodes of degree 3.
@@ -234,13 +241,13 @@ TEST(CurvedElements, flat_patches_give_their_straight_triangles) {
         const std::vector<std::array<int, 3>> order = gmsh_node_order(p);
         for (const CurvedElement& element : curved.elements) {
             const std::string where = "order " + std::to_string(p) + ", face " + std::to_string(element.face.idx());
-            ASSERT_EQ(element.positions.size(), order.size()) << where;
+            ASSERT_EQ(element.nodes.size(), order.size()) << where;
+            const std::vector<Point3> x = positions_of(curved, element);
             for (std::size_t n = 0; n < order.size(); ++n) {
-                const Point3 straight = (order[n][0] * element.positions[0] + order[n][1] * element.positions[1] +
-                                         order[n][2] * element.positions[2]) /
-                                        p;
-                EXPECT_LT((element.positions[n] - straight).norm(), 1e-12) << where << ", node " << n;
-                EXPECT_LT((g.fine().mesh.point(element.nodes[n]) - element.positions[n]).norm(), 1e-15) << where;
+                const Point3 straight = (order[n][0] * x[0] + order[n][1] * x[1] + order[n][2] * x[2]) / p;
+                EXPECT_LT((x[n] - straight).norm(), 1e-12) << where << ", node " << n;
+                const SurfacePoint& node = curved.nodes[static_cast<std::size_t>(element.nodes[n])];
+                EXPECT_LT((g.fine().mesh.point(node) - x[n]).norm(), 1e-15) << where;
             }
             const ElementCertificate& c = element.certificate;
             EXPECT_EQ(c.plane, Certification::valid) << where;
@@ -260,21 +267,22 @@ GeodesicTriangulation flipped_bob() {
     return g;
 }
 
-TEST(CurvedElements, elements_share_their_edge_nodes) {
+TEST(CurvedElements, elements_share_their_edge_nodes_which_lie_on_the_polylines_at_even_arc_lengths) {
     const GeodesicTriangulation g = flipped_bob();
     ASSERT_TRUE(validate(g).valid);
+    const geodesic::Mesh& mesh = g.fine().mesh;
     const int p = 4;
     CurveOptions options;
     options.order = p;
     const CurvedMesh curved = curve_elements(g, options);
     // Each edge's inner nodes, as each of its two faces has them, from the edge's first halfedge's from-vertex.
-    std::map<int, std::vector<std::vector<SurfacePoint>>> seen;
+    std::map<int, std::vector<std::vector<int>>> seen;
     for (const CurvedElement& element : curved.elements) {
         int side = 0;
         for (OpenMesh::HalfedgeHandle h : g.coarse().fh_range(element.face)) {
             const OpenMesh::EdgeHandle e = g.coarse().edge_handle(h);
-            std::vector<SurfacePoint> inner(element.nodes.begin() + 3 + side * (p - 1),
-                                            element.nodes.begin() + 3 + (side + 1) * (p - 1));
+            std::vector<int> inner(element.nodes.begin() + 3 + side * (p - 1),
+                                   element.nodes.begin() + 3 + (side + 1) * (p - 1));
             if (g.coarse().halfedge_handle(e, 0) != h) std::reverse(inner.begin(), inner.end());
             seen[e.idx()].push_back(inner);
             ++side;
@@ -284,7 +292,30 @@ TEST(CurvedElements, elements_share_their_edge_nodes) {
     for (const auto& [edge, both] : seen) {
         ASSERT_EQ(both.size(), 2u) << "edge " << edge;
         EXPECT_EQ(both[0], both[1]) << "edge " << edge;
+        // Node k lies at arc length k/p of the polyline: summed along the polyline's own segments.
+        const Polyline& line = g.polyline(OpenMesh::EdgeHandle(edge));
+        double total = 0.0;
+        for (std::size_t i = 1; i < line.size(); ++i) total += (mesh.point(line[i]) - mesh.point(line[i - 1])).norm();
+        for (int k = 1; k < p; ++k) {
+            const Point3 node = curved.positions[static_cast<std::size_t>(both[0][static_cast<std::size_t>(k - 1)])];
+            double walked = 0.0, nearest = std::numeric_limits<double>::infinity(), at = 0.0;
+            for (std::size_t i = 1; i < line.size(); ++i) {
+                const Point3 a = mesh.point(line[i - 1]), b = mesh.point(line[i]);
+                const double t = std::clamp((node - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+                const double d = (a + t * (b - a) - node).norm();
+                if (d < nearest) {
+                    nearest = d;
+                    at = walked + t * (b - a).norm();
+                }
+                walked += (b - a).norm();
+            }
+            EXPECT_LT(nearest, 1e-12 * total) << "edge " << edge << ", node " << k;
+            EXPECT_NEAR(at / total, static_cast<double>(k) / p, 1e-9) << "edge " << edge << ", node " << k;
+        }
     }
+    // Every node once: corners, p - 1 per edge, (p - 1)(p - 2)/2 per face.
+    EXPECT_EQ(curved.nodes.size(), g.coarse().n_vertices() + (p - 1) * g.coarse().n_edges() +
+                                       (p - 1) * (p - 2) / 2 * g.coarse().n_faces());
 }
 
 TEST(CurvedElements, certificates_hold_against_dense_sampling) {
@@ -302,14 +333,14 @@ TEST(CurvedElements, certificates_hold_against_dense_sampling) {
             worst_quality = std::min(worst_quality, c.quality_lower);
             largest_distance = std::max(largest_distance, c.distance / curved.diagonal);
             const std::string where = "order " + std::to_string(p) + ", face " + std::to_string(element.face.idx());
-            const Point3 normal =
-                (element.positions[1] - element.positions[0]).cross(element.positions[2] - element.positions[0]);
+            const std::vector<Point3> x = positions_of(curved, element);
+            const Point3 normal = (x[1] - x[0]).cross(x[2] - x[0]);
             double lo = std::numeric_limits<double>::infinity(), hi = -lo, farthest = 0.0;
             for (const Point2& q : grid(12, 1e-4)) {
-                const double j = sampled_jacobian(element.positions, p, q, normal);
+                const double j = sampled_jacobian(x, p, q, normal);
                 lo = std::min(lo, j);
                 hi = std::max(hi, j);
-                farthest = std::max(farthest, distance_to_surface(mesh, lagrange_point(element.positions, p, q)));
+                farthest = std::max(farthest, distance_to_surface(mesh, lagrange_point(x, p, q)));
             }
             // The bound of the distance to the patch bounds the distance to T.
             EXPECT_LE(farthest, c.distance * (1 + 1e-9) + 1e-15) << where;
@@ -340,11 +371,38 @@ TEST(CurvedElements, the_same_for_any_thread_count) {
     three.threads = 3;
     const CurvedMesh b = curve_elements(g, three);
     ASSERT_EQ(a.elements.size(), b.elements.size());
+    EXPECT_EQ(a.nodes, b.nodes);
+    EXPECT_EQ(a.positions, b.positions);
     for (std::size_t e = 0; e < a.elements.size(); ++e) {
         EXPECT_EQ(a.elements[e].nodes, b.elements[e].nodes);
         EXPECT_EQ(a.elements[e].certificate.distance, b.elements[e].certificate.distance);
         EXPECT_EQ(a.elements[e].certificate.quality_lower, b.elements[e].certificate.quality_lower);
     }
+}
+
+TEST(CurveAdaptively, refines_g_until_every_element_is_certified_and_keeps_g_valid) {
+    GeodesicTriangulation g = flipped_bob();
+    const std::size_t faces_before = g.coarse().n_faces();
+    CurveAdaptOptions options;
+    options.curve.order = 3;
+    const CurveAdaptResult r = curve_adaptively(g, options);
+    EXPECT_EQ(r.failing, 0);
+    EXPECT_FALSE(r.round_cap_reached);
+    EXPECT_GT(r.splits, 0);
+    EXPECT_EQ(g.coarse().n_faces(), faces_before + 2 * static_cast<std::size_t>(r.splits));
+    ASSERT_EQ(r.curved.elements.size(), g.coarse().n_faces());
+    test::expect_valid_with_area(g);
+    for (const CurvedElement& element : r.curved.elements)
+        EXPECT_TRUE(element.passes(options.min_quality, options.tolerance * r.curved.diagonal))
+            << "face " << element.face.idx();
+    // Without rounds, the elements of G as it is, some of them failing.
+    GeodesicTriangulation given = flipped_bob();
+    options.max_rounds = 0;
+    const CurveAdaptResult none = curve_adaptively(given, options);
+    EXPECT_EQ(none.splits, 0);
+    EXPECT_GT(none.failing, 0);
+    EXPECT_TRUE(none.round_cap_reached);
+    EXPECT_EQ(given.coarse().n_faces(), faces_before);
 }
 
 TEST(CurvedElements, refuses_an_order_out_of_range) {

@@ -23,8 +23,8 @@ declare -A allowed=(
   [pipeline]="core io check ops pipeline"
   [curved]="core io check ops pipeline curved"
 )
-# Public headers with no source of their own name: the plain data types, and the entry point.
-declare -A header_layer=([mesh_data]=core [edge_paths]=core [geotri]=pipeline)
+# Public headers with no source of their own name: the plain data types, and geotri.h, which includes them all.
+declare -A header_layer=([mesh_data]=core [edge_paths]=core [geotri]=curved)
 for layer in "${!allowed[@]}"; do
   for source in "$src/$layer"/*.cpp; do
     name=$(basename "$source" .cpp)

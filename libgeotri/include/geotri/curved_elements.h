@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <limits>
 #include <vector>
 
@@ -44,18 +45,27 @@ struct ElementCertificate {
 
 struct CurvedElement {
     OpenMesh::FaceHandle face;
-    /// The (p + 1)(p + 2)/2 nodes in gmsh's and VTK's order: corners 0, 1, 2 (the from-vertices of the face's
-    /// halfedges from halfedge_handle(face)); the inner nodes of edge 0→1 from 0, of 1→2 from 1, of 2→0 from 2;
-    /// then the interior nodes, recursively, as a triangle of order p - 3.
-    std::vector<SurfacePoint> nodes;
-    std::vector<Eigen::Vector3d> positions;  ///< of the nodes, in the same order
+    /// The (p + 1)(p + 2)/2 nodes, as indices into CurvedMesh::nodes, in gmsh's and VTK's order: corners 0, 1, 2
+    /// (the from-vertices of the face's halfedges from halfedge_handle(face)); the inner nodes of edge 0→1 from 0,
+    /// of 1→2 from 1, of 2→0 from 2; then the interior nodes, recursively, as a triangle of order p - 3.
+    std::vector<int> nodes;
+    int component = 0;  ///< the component of T that its patch lies on
+    int colour = 0;     ///< the greedy colour of its patch (elements that share an edge differ)
     ElementCertificate certificate;
+
+    /// Whether it passes: certified valid against both normals, quality_lower >= min_quality, and a distance bound
+    /// of at most `max_distance` (in the units of T).
+    bool passes(double min_quality, double max_distance) const;
 };
 
 struct CurvedMesh {
     int order = 0;
     double diagonal = 0.0;  ///< of T's bounding box
-    std::vector<CurvedElement> elements;  ///< one per coarse face, in face order
+    /// Every node once: the corners (G's vertices, in order), then the inner nodes of each edge (in edge order,
+    /// from the from-vertex of its first halfedge), then the interior nodes of each element (in face order).
+    std::vector<SurfacePoint> nodes;
+    std::vector<Eigen::Vector3d> positions;  ///< of the nodes
+    std::vector<CurvedElement> elements;     ///< one per coarse face, in face order
 };
 
 /// The curved elements of G, certified. Corners are G's vertex locations; the p - 1 inner nodes of each edge lie
@@ -66,6 +76,28 @@ struct CurvedMesh {
 /// overlay's patches are disks). Throws InvalidInput for an order outside [1, 8] or a patch that is not a disk, and
 /// NumericalError when a patch's map cannot be solved.
 CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& options = {});
+
+struct CurveAdaptOptions {
+    CurveOptions curve;
+    double tolerance = 1e-3;    ///< the largest distance bound allowed, relative to the diagonal of T's box
+    double min_quality = 0.1;   ///< the smallest certified min J / max J allowed (corners' plane)
+    int max_rounds = 20;        ///< rounds of refinement at most
+};
+
+struct CurveAdaptResult {
+    CurvedMesh curved;        ///< of G as refined
+    int rounds = 0;           ///< rounds that refined G
+    int splits = 0;           ///< edges bisected
+    int failing = 0;          ///< elements that still fail (0 unless a round could mend nothing or the cap was hit)
+    bool round_cap_reached = false;
+};
+
+/// curve_elements(), then, while some elements fail (CurvedElement::passes()), bisects the longest edge of each
+/// failing face at the middle of its polyline (split_edge(), so that G stays valid and isogeometric), and curves G
+/// again; at most max_rounds rounds. A curved patch flattens as it shrinks, so the failures go, but for what a
+/// refused split or the cap leaves: `failing` counts them, and the elements' certificates say why. Deterministic.
+/// Throws as curve_elements() does, and InvalidInput for a tolerance or quality out of range.
+CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOptions& options = {});
 
 /// The positions of the gmsh-ordered nodes of order p as multi-indices (i, j, k), i + j + k = p, each the weights
 /// of corners 0, 1, 2 times p.

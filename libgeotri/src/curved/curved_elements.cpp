@@ -44,18 +44,30 @@ std::vector<std::vector<SurfacePoint>> edge_nodes(const GeodesicTriangulation& g
     return nodes;
 }
 
-/// The element of coarse face f, certified.
-CurvedElement make_element(const GeodesicTriangulation& g, const Overlay& overlay, OpenMesh::FaceHandle f,
-                           const std::vector<std::vector<SurfacePoint>>& on_edges, const CurveOptions& options) {
+/// An element as made for one face: its node indices for the corners and edges (the interior ones to come), and
+/// its interior nodes' points, in gmsh's order.
+struct MadeElement {
+    CurvedElement element;
+    std::vector<SurfacePoint> interior;
+    std::vector<Eigen::Vector3d> interior_positions;
+};
+
+/// The element of coarse face f, certified. `first_edge_node[e]` is the index in the node table of the first inner
+/// node of edge e.
+MadeElement make_element(const GeodesicTriangulation& g, const Overlay& overlay, OpenMesh::FaceHandle f,
+                         const std::vector<std::vector<SurfacePoint>>& on_edges,
+                         const std::vector<int>& first_edge_node, const CurveOptions& options) {
     const CoarseMesh& coarse = g.coarse();
     const geodesic::Mesh& mesh = g.fine().mesh;
     const int p = options.order;
     const std::vector<std::array<int, 3>> indices = detail::multi_indices(p);
     std::vector<SurfacePoint> nodes(indices.size());
     std::vector<Eigen::Vector3d> positions(indices.size());
-    auto set = [&](int j, int k, const SurfacePoint& point) {
+    std::vector<int> table(indices.size(), -1);  // per multi-index: its index in the node table, when known
+    auto set = [&](int j, int k, const SurfacePoint& point, int in_table) {
         nodes[multi_index_position(j, k)] = point;
         positions[multi_index_position(j, k)] = mesh.point(point);
+        table[multi_index_position(j, k)] = in_table;
     };
 
     std::array<OpenMesh::HalfedgeHandle, 3> sides;
@@ -68,17 +80,19 @@ CurvedElement make_element(const GeodesicTriangulation& g, const Overlay& overla
     for (std::size_t s = 0; s < 3; ++s) {
         const OpenMesh::HalfedgeHandle h = sides[s];
         const std::array<int, 3> corner_index{s == 0 ? p : 0, s == 1 ? p : 0, s == 2 ? p : 0};
-        set(corner_index[1], corner_index[2], g.location(coarse.from_vertex_handle(h)));
+        const OpenMesh::VertexHandle corner = coarse.from_vertex_handle(h);
+        set(corner_index[1], corner_index[2], g.location(corner), corner.idx());
         const OpenMesh::EdgeHandle e = coarse.edge_handle(h);
         const bool along = coarse.halfedge_handle(e, 0) == h;
         for (int m = 1; m < p; ++m) {
-            const SurfacePoint& point = on_edges[static_cast<std::size_t>(e.idx())][static_cast<std::size_t>(
-                along ? m - 1 : p - m - 1)];
+            const int along_edge = along ? m - 1 : p - m - 1;
+            const SurfacePoint& point =
+                on_edges[static_cast<std::size_t>(e.idx())][static_cast<std::size_t>(along_edge)];
             // m/p of the way from corner s to corner s + 1.
             std::array<int, 3> index{0, 0, 0};
             index[s] = p - m;
             index[(s + 1) % 3] = m;
-            set(index[1], index[2], point);
+            set(index[1], index[2], point, first_edge_node[static_cast<std::size_t>(e.idx())] + along_edge);
         }
     }
     const detail::PatchParameterization map(g, overlay, f);
@@ -92,7 +106,8 @@ CurvedElement make_element(const GeodesicTriangulation& g, const Overlay& overla
         positions[multi_index_position(index[1], index[2])] = at->position;
     }
 
-    CurvedElement element;
+    MadeElement made;
+    CurvedElement& element = made.element;
     element.face = f;
     ElementCertificate& certificate = element.certificate;
     const std::vector<Eigen::Vector3d> x = detail::bernstein_from_lagrange(positions, p);
@@ -136,10 +151,14 @@ CurvedElement make_element(const GeodesicTriangulation& g, const Overlay& overla
     }
 
     for (const std::array<int, 3>& index : gmsh_node_order(p)) {
-        element.nodes.push_back(nodes[multi_index_position(index[1], index[2])]);
-        element.positions.push_back(positions[multi_index_position(index[1], index[2])]);
+        const std::size_t at = multi_index_position(index[1], index[2]);
+        element.nodes.push_back(table[at]);
+        if (table[at] == -1) {
+            made.interior.push_back(nodes[at]);
+            made.interior_positions.push_back(positions[at]);
+        }
     }
-    return element;
+    return made;
 }
 
 }  // namespace
@@ -151,6 +170,11 @@ const char* to_string(Certification certification) {
         case Certification::undecided: return "undecided";
     }
     return "?";
+}
+
+bool CurvedElement::passes(double min_quality, double max_distance) const {
+    return certificate.plane == Certification::valid && certificate.surface == Certification::valid &&
+           certificate.quality_lower >= min_quality && certificate.distance <= max_distance;
 }
 
 std::vector<std::array<int, 3>> gmsh_node_order(int order) {
@@ -182,24 +206,55 @@ CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& op
     curved.diagonal = (hi - lo).norm();
 
     const Overlay overlay = build_overlay(g);
-    const std::vector<std::vector<SurfacePoint>> on_edges = edge_nodes(g, options.order);
-    const auto faces = static_cast<int>(g.coarse().n_faces());
-    std::vector<CurvedElement> elements(static_cast<std::size_t>(faces));
+    const CoarseMesh& coarse = g.coarse();
+    const int p = options.order;
+    const std::vector<std::vector<SurfacePoint>> on_edges = edge_nodes(g, p);
+    // The node table: the corners, then the edges' inner nodes, then the interior nodes, face by face.
+    for (OpenMesh::VertexHandle v : coarse.vertices()) curved.nodes.push_back(g.location(v));
+    std::vector<int> first_edge_node(coarse.n_edges());
+    for (OpenMesh::EdgeHandle e : coarse.edges()) {
+        first_edge_node[static_cast<std::size_t>(e.idx())] = static_cast<int>(curved.nodes.size());
+        for (const SurfacePoint& point : on_edges[static_cast<std::size_t>(e.idx())]) curved.nodes.push_back(point);
+    }
+    for (const SurfacePoint& point : curved.nodes) curved.positions.push_back(mesh.point(point));
+    std::vector<int> colour(coarse.n_faces(), 0);
+    for (std::size_t t = 0; t < overlay.triangles.size(); ++t)
+        if (overlay.patch[t] >= 0) colour[static_cast<std::size_t>(overlay.patch[t])] = overlay.colour[t];
+
+    const auto faces = static_cast<int>(coarse.n_faces());
+    std::vector<MadeElement> made(static_cast<std::size_t>(faces));
     // Each face's failure is kept apart, and the first face's is thrown: the same for any thread count.
     std::vector<std::exception_ptr> failures(static_cast<std::size_t>(faces));
     const int threads = detail::team_size(options.threads);
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
     for (int f = 0; f < faces; ++f) {
         try {
-            elements[static_cast<std::size_t>(f)] =
-                make_element(g, overlay, OpenMesh::FaceHandle(f), on_edges, options);
+            made[static_cast<std::size_t>(f)] =
+                make_element(g, overlay, OpenMesh::FaceHandle(f), on_edges, first_edge_node, options);
         } catch (...) {
             failures[static_cast<std::size_t>(f)] = std::current_exception();
         }
     }
     for (const std::exception_ptr& failure : failures)
         if (failure) std::rethrow_exception(failure);
-    curved.elements = std::move(elements);
+
+    curved.elements.reserve(made.size());
+    for (MadeElement& m : made) {
+        std::size_t next = 0;
+        for (int& node : m.element.nodes)
+            if (node == -1) {
+                node = static_cast<int>(curved.nodes.size());
+                curved.nodes.push_back(m.interior[next]);
+                curved.positions.push_back(m.interior_positions[next++]);
+            }
+        const SurfacePoint& corner = curved.nodes[static_cast<std::size_t>(m.element.nodes[0])];
+        const int fine_vertex = corner.kind == geodesic::PointKind::vertex ? corner.vertex
+                                : corner.kind == geodesic::PointKind::edge ? corner.edge_v0
+                                                                           : mesh.triangle(corner.face)[0];
+        m.element.component = g.fine().component[static_cast<std::size_t>(fine_vertex)];
+        m.element.colour = colour[static_cast<std::size_t>(m.element.face.idx())];
+        curved.elements.push_back(std::move(m.element));
+    }
     return curved;
 }
 

@@ -1,5 +1,5 @@
 #include <geodesic/errors.h>
-#include <geotri/geotri.h>
+#include <geotri/build_geodesic_triangulation.h>
 
 #include <utility>
 

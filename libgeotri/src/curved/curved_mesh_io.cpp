@@ -1,0 +1,225 @@
+#include <geodesic/errors.h>
+#include <geotri/curved_mesh_io.h>
+
+#include "io/atomic_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace geotri {
+
+namespace {
+
+/// The components that elements lie on, in increasing order.
+std::vector<int> components_of(const CurvedMesh& curved) {
+    std::vector<int> components;
+    for (const CurvedElement& element : curved.elements) components.push_back(element.component);
+    std::sort(components.begin(), components.end());
+    components.erase(std::unique(components.begin(), components.end()), components.end());
+    return components;
+}
+
+/// Per node: the component of the first element that uses it (a node is on one component of T).
+std::vector<int> node_components(const CurvedMesh& curved) {
+    std::vector<int> component(curved.nodes.size(), -1);
+    for (const CurvedElement& element : curved.elements)
+        for (int node : element.nodes)
+            if (component[static_cast<std::size_t>(node)] == -1)
+                component[static_cast<std::size_t>(node)] = element.component;
+    return component;
+}
+
+void write_point(detail::AtomicFile& out, const Eigen::Vector3d& x) {
+    out.write_double(x.x());
+    out.write(" ");
+    out.write_double(x.y());
+    out.write(" ");
+    out.write_double(x.z());
+}
+
+void write_msh41(detail::AtomicFile& out, const CurvedMesh& curved) {
+    const std::vector<int> components = components_of(curved);
+    const std::vector<int> node_component = node_components(curved);
+    out.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+    out.write("$PhysicalNames\n" + std::to_string(components.size()) + "\n");
+    for (int c : components) out.write("2 " + std::to_string(c + 1) + " \"component " + std::to_string(c + 1) + "\"\n");
+    out.write("$EndPhysicalNames\n");
+    // Entities: one surface per component, its box from its nodes, its physical group of the same tag.
+    out.write("$Entities\n0 0 " + std::to_string(components.size()) + " 0\n");
+    for (int c : components) {
+        Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (std::size_t n = 0; n < curved.nodes.size(); ++n)
+            if (node_component[n] == c) {
+                lo = lo.cwiseMin(curved.positions[n]);
+                hi = hi.cwiseMax(curved.positions[n]);
+            }
+        out.write(std::to_string(c + 1) + " ");
+        write_point(out, lo);
+        out.write(" ");
+        write_point(out, hi);
+        out.write(" 1 " + std::to_string(c + 1) + " 0\n");
+    }
+    out.write("$EndEntities\n");
+
+    const std::size_t nodes = curved.nodes.size();
+    out.write("$Nodes\n" + std::to_string(components.size()) + " " + std::to_string(nodes) + " 1 " +
+              std::to_string(nodes) + "\n");
+    for (int c : components) {
+        std::vector<std::size_t> block;
+        for (std::size_t n = 0; n < nodes; ++n)
+            if (node_component[n] == c) block.push_back(n);
+        out.write("2 " + std::to_string(c + 1) + " 0 " + std::to_string(block.size()) + "\n");
+        for (std::size_t n : block) {
+            out.write_int(static_cast<long long>(n + 1));
+            out.write("\n");
+        }
+        for (std::size_t n : block) {
+            write_point(out, curved.positions[n]);
+            out.write("\n");
+        }
+    }
+    out.write("$EndNodes\n");
+
+    const int type = gmsh_triangle_type(curved.order);
+    out.write("$Elements\n" + std::to_string(components.size()) + " " + std::to_string(curved.elements.size()) +
+              " 1 " + std::to_string(curved.elements.size()) + "\n");
+    for (int c : components) {
+        std::vector<std::size_t> block;
+        for (std::size_t e = 0; e < curved.elements.size(); ++e)
+            if (curved.elements[e].component == c) block.push_back(e);
+        out.write("2 " + std::to_string(c + 1) + " " + std::to_string(type) + " " + std::to_string(block.size()) +
+                  "\n");
+        for (std::size_t e : block) {
+            out.write_int(static_cast<long long>(e + 1));
+            for (int node : curved.elements[e].nodes) {
+                out.write(" ");
+                out.write_int(node + 1);
+            }
+            out.write("\n");
+        }
+    }
+    out.write("$EndElements\n");
+}
+
+void write_msh22(detail::AtomicFile& out, const CurvedMesh& curved) {
+    const std::vector<int> components = components_of(curved);
+    out.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n");
+    out.write("$PhysicalNames\n" + std::to_string(components.size()) + "\n");
+    for (int c : components) out.write("2 " + std::to_string(c + 1) + " \"component " + std::to_string(c + 1) + "\"\n");
+    out.write("$EndPhysicalNames\n");
+    out.write("$Nodes\n" + std::to_string(curved.nodes.size()) + "\n");
+    for (std::size_t n = 0; n < curved.nodes.size(); ++n) {
+        out.write_int(static_cast<long long>(n + 1));
+        out.write(" ");
+        write_point(out, curved.positions[n]);
+        out.write("\n");
+    }
+    out.write("$EndNodes\n");
+    const std::string type = std::to_string(gmsh_triangle_type(curved.order));
+    out.write("$Elements\n" + std::to_string(curved.elements.size()) + "\n");
+    for (std::size_t e = 0; e < curved.elements.size(); ++e) {
+        const CurvedElement& element = curved.elements[e];
+        // Two tags: the physical group, then the elementary entity, both the component's.
+        const std::string tag = std::to_string(element.component + 1);
+        out.write(std::to_string(e + 1) + " " + type + " 2 " + tag + " " + tag);
+        for (int node : element.nodes) {
+            out.write(" ");
+            out.write_int(node + 1);
+        }
+        out.write("\n");
+    }
+    out.write("$EndElements\n");
+}
+
+int certification_code(Certification c) {
+    return c == Certification::valid ? 1 : c == Certification::invalid ? 0 : -1;
+}
+
+}  // namespace
+
+int gmsh_triangle_type(int order) {
+    static constexpr int types[] = {2, 9, 21, 23, 25, 42, 43, 44};
+    if (order < 1 || order > 8)
+        throw InvalidInput("gmsh has no Lagrange triangle of order " + std::to_string(order) + " here (1 to 8)");
+    return types[order - 1];
+}
+
+void write_msh(const std::string& path, const CurvedMesh& curved, MshVersion version) {
+    gmsh_triangle_type(curved.order);  // refuse an order that the file cannot hold before anything is written
+    detail::AtomicFile out(path);
+    if (version == MshVersion::v41) write_msh41(out, curved);
+    else write_msh22(out, curved);
+    out.commit();
+}
+
+void write_vtu(const std::string& path, const CurvedMesh& curved) {
+    detail::AtomicFile out(path);
+    const std::size_t cells = curved.elements.size();
+    out.write("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+              "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n");
+    out.write("<Piece NumberOfPoints=\"" + std::to_string(curved.nodes.size()) + "\" NumberOfCells=\"" +
+              std::to_string(cells) + "\">\n");
+    out.write("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    for (const Eigen::Vector3d& x : curved.positions) {
+        write_point(out, x);
+        out.write("\n");
+    }
+    out.write("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    for (const CurvedElement& element : curved.elements) {
+        for (std::size_t n = 0; n < element.nodes.size(); ++n) {
+            if (n > 0) out.write(" ");
+            out.write_int(element.nodes[n]);
+        }
+        out.write("\n");
+    }
+    out.write("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    long long offset = 0;
+    for (const CurvedElement& element : curved.elements) {
+        offset += static_cast<long long>(element.nodes.size());
+        out.write_int(offset);
+        out.write("\n");
+    }
+    out.write("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    for (std::size_t c = 0; c < cells; ++c) out.write("69\n");  // VTK_LAGRANGE_TRIANGLE
+    out.write("</DataArray>\n</Cells>\n<CellData Scalars=\"quality\">\n");
+    auto int_array = [&](const char* name, auto value) {
+        out.write(std::string("<DataArray type=\"Int32\" Name=\"") + name + "\" format=\"ascii\">\n");
+        for (const CurvedElement& element : curved.elements) {
+            out.write_int(value(element));
+            out.write("\n");
+        }
+        out.write("</DataArray>\n");
+    };
+    auto double_array = [&](const char* name, auto value) {
+        out.write(std::string("<DataArray type=\"Float64\" Name=\"") + name + "\" format=\"ascii\">\n");
+        for (const CurvedElement& element : curved.elements) {
+            out.write_double(value(element));
+            out.write("\n");
+        }
+        out.write("</DataArray>\n");
+    };
+    double_array("quality", [](const CurvedElement& e) { return e.certificate.quality_lower; });
+    double_array("distance", [&](const CurvedElement& e) { return e.certificate.distance / curved.diagonal; });
+    int_array("coarse_face", [](const CurvedElement& e) { return e.face.idx(); });
+    int_array("component", [](const CurvedElement& e) { return e.component; });
+    int_array("colour", [](const CurvedElement& e) { return e.colour; });
+    int_array("valid_plane", [](const CurvedElement& e) { return certification_code(e.certificate.plane); });
+    int_array("valid_surface", [](const CurvedElement& e) { return certification_code(e.certificate.surface); });
+    out.write("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+    out.commit();
+}
+
+void write_curved_mesh(const std::string& path, const CurvedMesh& curved, MshVersion version) {
+    const std::size_t dot = path.find_last_of('.');
+    std::string extension = dot == std::string::npos ? "" : path.substr(dot);
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension == ".msh") write_msh(path, curved, version);
+    else if (extension == ".vtu") write_vtu(path, curved);
+    else throw InvalidInput(path + ": cannot write curved elements as '" + extension + "' (expected .msh or .vtu)");
+}
+
+}  // namespace geotri
