@@ -141,7 +141,9 @@ int run(tools::Tool& tool) {
         if (r.failing > 0) {
             std::fprintf(stderr, "%s: %d element%s not certified (%s):", program, r.failing,
                          r.failing == 1 ? " is" : "s are",
-                         r.round_cap_reached ? "the round cap was reached" : no_adapt ? "--no-adapt" : "no split mends them");
+                         no_adapt              ? "--no-adapt"
+                         : r.round_cap_reached ? "the round cap was reached"
+                                               : "no split mends them");
             int shown = 0;
             for (const geotri::CurvedElement& element : r.curved.elements) {
                 if (element.passes(options.min_quality, max_distance)) continue;

@@ -4,6 +4,7 @@
 #include <geotri/split.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -12,14 +13,14 @@ namespace geotri {
 
 namespace {
 
-/// The longest edge of face f (the first of the longest in the face's halfedge order).
-OpenMesh::EdgeHandle longest_edge(const GeodesicTriangulation& g, OpenMesh::FaceHandle f) {
-    OpenMesh::EdgeHandle longest;
-    for (OpenMesh::HalfedgeHandle h : g.coarse().fh_range(f)) {
-        const OpenMesh::EdgeHandle e = g.coarse().edge_handle(h);
-        if (!longest.is_valid() || g.length(e) > g.length(longest)) longest = e;
-    }
-    return longest;
+/// The edges of face f, longest first (ties in the face's halfedge order).
+std::vector<OpenMesh::EdgeHandle> edges_longest_first(const GeodesicTriangulation& g, OpenMesh::FaceHandle f) {
+    std::vector<OpenMesh::EdgeHandle> edges;
+    for (OpenMesh::HalfedgeHandle h : g.coarse().fh_range(f)) edges.push_back(g.coarse().edge_handle(h));
+    std::stable_sort(edges.begin(), edges.end(), [&](OpenMesh::EdgeHandle a, OpenMesh::EdgeHandle b) {
+        return g.length(a) > g.length(b);
+    });
+    return edges;
 }
 
 }  // namespace
@@ -34,24 +35,33 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
     for (;;) {
         result.curved = curve_elements(g, options.curve);
         const double max_distance = options.tolerance * result.curved.diagonal;
-        // Each failing face's longest edge, once, in edge order: handles of edges stay valid across splits.
-        std::vector<int> edges;
+        std::vector<OpenMesh::FaceHandle> failing;
         for (const CurvedElement& element : result.curved.elements)
-            if (!element.passes(options.min_quality, max_distance))
-                edges.push_back(longest_edge(g, element.face).idx());
-        std::sort(edges.begin(), edges.end());
-        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-        result.failing = static_cast<int>(std::count_if(
-            result.curved.elements.begin(), result.curved.elements.end(),
-            [&](const CurvedElement& element) { return !element.passes(options.min_quality, max_distance); }));
-        if (edges.empty()) return result;
+            if (!element.passes(options.min_quality, max_distance)) failing.push_back(element.face);
+        result.failing = static_cast<int>(failing.size());
+        if (failing.empty()) return result;
         if (result.rounds >= options.max_rounds) {
             result.round_cap_reached = true;
             return result;
         }
+        // Each failing face, in face order, that no split of this round has changed yet: its longest edge is
+        // bisected, or where that split is refused, the next longest. Face handles stay valid across splits.
+        std::vector<char> changed(g.coarse().n_faces(), 0);
         int splits = 0;
-        for (int e : edges)
-            if (split_edge(g, OpenMesh::EdgeHandle(e), 0.5).done) ++splits;
+        for (OpenMesh::FaceHandle f : failing) {
+            if (changed[static_cast<std::size_t>(f.idx())]) continue;
+            for (OpenMesh::EdgeHandle e : edges_longest_first(g, f)) {
+                const CoarseMesh& coarse = g.coarse();
+                const std::array<OpenMesh::FaceHandle, 2> sides{coarse.face_handle(coarse.halfedge_handle(e, 0)),
+                                                               coarse.face_handle(coarse.halfedge_handle(e, 1))};
+                if (!split_edge(g, e, 0.5).done) continue;
+                for (OpenMesh::FaceHandle side : sides)
+                    if (side.is_valid() && static_cast<std::size_t>(side.idx()) < changed.size())
+                        changed[static_cast<std::size_t>(side.idx())] = 1;
+                ++splits;
+                break;
+            }
+        }
         if (splits == 0) return result;  // nothing mends what is left: the certificates say why
         // Bisection alone leaves thin triangles behind, whose corners' plane tells little of their surface: flips
         // towards geodesic Delaunay (which keep G valid) shape them again.
