@@ -25,7 +25,15 @@ std::string check_spoke(const GeodesicTriangulation& g, const Spoke& spoke, cons
     const std::string name = "the geodesic to coarse vertex " + std::to_string(spoke.to.idx());
     const std::size_t n = path.size();
     if (n < 2) return name + " is empty";
-    const std::string bend = straightness_defect(mesh, path);
+    // A path from a point within rounding of a fine edge can step from the point's face straight into the face
+    // beyond that edge: two points that share no face, no polyline of T. The spoke is refused, as any other that
+    // is not a geodesic of T.
+    std::string bend;
+    try {
+        bend = straightness_defect(mesh, path);
+    } catch (const InvalidInput& e) {
+        return name + " is not a polyline of T (" + e.what() + ")";
+    }
     if (!bend.empty()) return name + " " + bend;
     if (spoke.has_wedge &&
         !split_corner(spoke.wedge_from, polar_angle(mesh, path[0], path[1]), spoke.wedge_to, theta).ok)
