@@ -2,9 +2,9 @@
 #include <geotri/curved_mesh_io.h>
 
 #include "io/atomic_file.h"
+#include "io/mesh_io_detail.h"
 
 #include <algorithm>
-#include <cctype>
 #include <limits>
 #include <string>
 #include <vector>
@@ -163,10 +163,7 @@ void write_vtu(const std::string& path, const CurvedMesh& curved) {
     out.write("<Piece NumberOfPoints=\"" + std::to_string(curved.nodes.size()) + "\" NumberOfCells=\"" +
               std::to_string(cells) + "\">\n");
     out.write("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-    for (const Eigen::Vector3d& x : curved.positions) {
-        write_point(out, x);
-        out.write("\n");
-    }
+    detail::write_point_lines(out, "", curved.positions);
     out.write("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
     for (const CurvedElement& element : curved.elements) {
         for (std::size_t n = 0; n < element.nodes.size(); ++n) {
@@ -213,10 +210,7 @@ void write_vtu(const std::string& path, const CurvedMesh& curved) {
 }
 
 void write_curved_mesh(const std::string& path, const CurvedMesh& curved, MshVersion version) {
-    const std::size_t dot = path.find_last_of('.');
-    std::string extension = dot == std::string::npos ? "" : path.substr(dot);
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string extension = detail::extension_of(path);
     if (extension == ".msh") write_msh(path, curved, version);
     else if (extension == ".vtu") write_vtu(path, curved);
     else throw InvalidInput(path + ": cannot write curved elements as '" + extension + "' (expected .msh or .vtu)");
