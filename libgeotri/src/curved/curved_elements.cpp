@@ -20,7 +20,6 @@ namespace geotri {
 
 namespace {
 
-using detail::coefficient_count;
 using detail::multi_index_position;
 
 constexpr int k_max_order = 8;
