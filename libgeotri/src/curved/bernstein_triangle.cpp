@@ -5,7 +5,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <string>
+#include <utility>
 
 namespace geotri::detail {
 
@@ -61,10 +63,10 @@ const Eigen::MatrixXd& lagrange_to_bernstein(int n) {
     return inverses[static_cast<std::size_t>(n)];
 }
 
-/// One step of de Casteljau's algorithm with barycentric weights l: degree m + 1 to degree m.
+/// One step of de Casteljau's algorithm with barycentric weights l: the coefficients `c` of degree m + 1 to `next`
+/// of degree m. The buffers are the caller's, so that the steps of a blossom allocate nothing.
 template <class Value>
-std::vector<Value> casteljau_step(const std::vector<Value>& c, int m, const std::array<double, 3>& l) {
-    std::vector<Value> next(coefficient_count(m));
+void casteljau_step(const Value* c, int m, const std::array<double, 3>& l, Value* next) {
     for (int s = 0; s <= m; ++s)
         for (int k = 0; k <= s; ++k) {
             const int j = s - k;
@@ -73,7 +75,28 @@ std::vector<Value> casteljau_step(const std::vector<Value>& c, int m, const std:
                                                l[1] * c[multi_index_position(j + 1, k)] +
                                                l[2] * c[multi_index_position(j, k + 1)];
         }
-    return next;
+}
+
+/// The weights of the product of two Bernstein polynomials of degree m, for every pair of their multi-indices:
+/// B_a B_b = C(m, a) C(m, b) / C(2m, a + b) B_(a + b). Made once per degree.
+const std::vector<double>& product_weights(int m) {
+    static const std::array<std::vector<double>, k_max_degree / 2 + 1> tables = [] {
+        std::array<std::vector<double>, k_max_degree / 2 + 1> made;
+        for (int degree = 0; degree <= k_max_degree / 2; ++degree) {
+            const std::vector<std::array<int, 3>> lower = multi_indices(degree);
+            std::vector<double> weight(lower.size());
+            for (std::size_t a = 0; a < lower.size(); ++a) weight[a] = multinomial(degree, lower[a]);
+            std::vector<double>& table = made[static_cast<std::size_t>(degree)];
+            for (std::size_t a = 0; a < lower.size(); ++a)
+                for (std::size_t b = 0; b < lower.size(); ++b) {
+                    const std::array<int, 3> sum{lower[a][0] + lower[b][0], lower[a][1] + lower[b][1],
+                                                 lower[a][2] + lower[b][2]};
+                    table.push_back(weight[a] * weight[b] / multinomial(2 * degree, sum));
+                }
+        }
+        return made;
+    }();
+    return tables[static_cast<std::size_t>(m)];
 }
 
 }  // namespace
@@ -111,13 +134,16 @@ std::vector<Value> restrict_to_triangle(const std::vector<Value>& coefficients, 
     const std::vector<std::array<int, 3>> indices = multi_indices(n);
     std::vector<Value> restricted;
     restricted.reserve(indices.size());
+    std::vector<Value> level(coefficients.size()), next(coefficients.size());
     for (const std::array<int, 3>& index : indices) {
         // The blossom at (a^i, b^j, c^k): de Casteljau with a different argument at each step.
-        std::vector<Value> level = coefficients;
+        std::copy(coefficients.begin(), coefficients.end(), level.begin());
         int degree = n;
         for (int corner = 0; corner < 3; ++corner)
-            for (int r = 0; r < index[static_cast<std::size_t>(corner)]; ++r)
-                level = casteljau_step(level, --degree, corners[static_cast<std::size_t>(corner)]);
+            for (int r = 0; r < index[static_cast<std::size_t>(corner)]; ++r) {
+                casteljau_step(level.data(), --degree, corners[static_cast<std::size_t>(corner)], next.data());
+                std::swap(level, next);
+            }
         restricted.push_back(level[0]);
     }
     return restricted;
@@ -127,8 +153,11 @@ template <class Value>
 Value evaluate(const std::vector<Value>& coefficients, int n, const Eigen::Vector2d& point) {
     require_degree(n, "evaluate");
     const std::array<double, 3> l = barycentric(point);
-    std::vector<Value> level = coefficients;
-    for (int degree = n - 1; degree >= 0; --degree) level = casteljau_step(level, degree, l);
+    std::vector<Value> level = coefficients, next(coefficients.size());
+    for (int degree = n - 1; degree >= 0; --degree) {
+        casteljau_step(level.data(), degree, l, next.data());
+        std::swap(level, next);
+    }
     return level[0];
 }
 
@@ -145,17 +174,12 @@ std::vector<double> jacobian_coefficients(const std::vector<Eigen::Vector3d>& x,
         du[a] = n * (x[multi_index_position(j + 1, k)] - at_0);
         dv[a] = n * (x[multi_index_position(j, k + 1)] - at_0);
     }
-    // The product of two Bernstein polynomials of degree m: B_a B_b = C(m, a) C(m, b) / C(2m, a + b) B_(a + b).
-    std::vector<double> weight(lower.size());
-    for (std::size_t a = 0; a < lower.size(); ++a) weight[a] = multinomial(m, lower[a]);
+    const std::vector<double>& weight = product_weights(m);
     std::vector<double> jacobian(coefficient_count(2 * m), 0.0);
     for (std::size_t a = 0; a < lower.size(); ++a)
-        for (std::size_t b = 0; b < lower.size(); ++b) {
-            const std::array<int, 3> sum{lower[a][0] + lower[b][0], lower[a][1] + lower[b][1],
-                                         lower[a][2] + lower[b][2]};
-            jacobian[multi_index_position(sum[1], sum[2])] +=
-                weight[a] * weight[b] / multinomial(2 * m, sum) * du[a].cross(dv[b]).dot(normal);
-        }
+        for (std::size_t b = 0; b < lower.size(); ++b)
+            jacobian[multi_index_position(lower[a][1] + lower[b][1], lower[a][2] + lower[b][2])] +=
+                weight[a * lower.size() + b] * du[a].cross(dv[b]).dot(normal);
     return jacobian;
 }
 
