@@ -3,6 +3,7 @@
 #include <geotri/overlay.h>
 #include <geotri/split.h>
 
+#include "core/plane_segments.h"
 #include "core/thread_count.h"
 #include "curved/bernstein_triangle.h"
 #include "curved/patch_parameterization.h"
@@ -30,8 +31,6 @@ Certification worse(Certification a, Certification b) {
     if (a == Certification::undecided || b == Certification::undecided) return Certification::undecided;
     return Certification::valid;
 }
-
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// The inner nodes of every coarse edge: at arc-length fractions k/p of its polyline, k = 1 .. p - 1, from the
 /// from-vertex of its first halfedge.
@@ -134,7 +133,7 @@ MadeElement make_element(const GeodesicTriangulation& g, const Overlay& overlay,
                 (index[0] * t.positions[0] + index[1] * t.positions[1] + index[2] * t.positions[2]) / p;
             certificate.distance = std::max(certificate.distance, (restricted[c] - linear).norm());
         }
-        const double area = cross2(t.reference[1] - t.reference[0], t.reference[2] - t.reference[0]);
+        const double area = detail::cross(t.reference[1] - t.reference[0], t.reference[2] - t.reference[0]);
         if (area == 0.0) continue;  // all three on one side: no part of the element maps there
         if (area < 0.0) {
             certificate.surface = worse(certificate.surface, Certification::undecided);

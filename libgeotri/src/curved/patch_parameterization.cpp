@@ -1,5 +1,7 @@
 #include "curved/patch_parameterization.h"
 
+#include "core/plane_segments.h"
+
 #include <geodesic/errors.h>
 
 #include <Eigen/Geometry>
@@ -50,8 +52,6 @@ std::array<double, 3> in_face(const geodesic::Mesh& mesh, const SurfacePoint& p,
 double tan_half_angle(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
     return e1.cross(e2).norm() / (e1.norm() * e2.norm() + e1.dot(e2));
 }
-
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 }  // namespace
 
@@ -216,10 +216,10 @@ std::optional<PatchParameterization::Preimage> PatchParameterization::preimage(c
     double best_margin = -std::numeric_limits<double>::infinity();
     for (const Triangle& triangle : triangles_) {
         const auto& r = triangle.reference;
-        const double area = cross2(r[1] - r[0], r[2] - r[0]);
+        const double area = cross(r[1] - r[0], r[2] - r[0]);
         if (!(area > 0.0)) continue;
-        const std::array<double, 3> bary{cross2(r[1] - xi, r[2] - xi) / area, cross2(r[2] - xi, r[0] - xi) / area,
-                                         cross2(r[0] - xi, r[1] - xi) / area};
+        const std::array<double, 3> bary{cross(r[1] - xi, r[2] - xi) / area, cross(r[2] - xi, r[0] - xi) / area,
+                                         cross(r[0] - xi, r[1] - xi) / area};
         const double margin = std::min({bary[0], bary[1], bary[2]});
         if (margin > best_margin) {
             best_margin = margin;
