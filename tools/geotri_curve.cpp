@@ -1,8 +1,8 @@
 // geotri-curve: curved high-order elements on a valid geodesic triangulation, each one certified valid and within a
-// proven distance of the surface, refining G where an element fails; written as gmsh MSH or VTK VTU.
+// proven distance of the surface, refining G where an element fails; written as gmsh MSH, VTK VTU or MFEM mesh.
 //
-//   geotri-curve IN.gtri -o OUT.{msh,vtu} [--order P] [--tolerance EPS] [--min-quality Q] [--no-adapt]
-//                [--gtri-out G.gtri] [--msh-version 4.1|2.2] [--fine PATH] [--quiet] [--json]
+//   geotri-curve IN.gtri -o OUT.{msh,vtu,mesh} [--order P] [--tolerance EPS] [--min-quality Q] [--no-adapt]
+//                [--gtri-out G.gtri] [--msh-version 4.1|2.2] [--bezier] [--fine PATH] [--quiet] [--json]
 //
 // Exit codes: 0 when every element is certified, 3 when OUT is written but some elements are not, 1 bad input (an
 // invalid IN among it), 2 usage error.
@@ -36,18 +36,19 @@ int run(tools::Tool& tool) {
                     "Jacobian is positive against the plane of its corners and against every face of T it covers,\n"
                     "its min J / max J is at least --min-quality, and it lies within --tolerance of its patch. G is\n"
                     "refined by bisection around the elements that fail, until none does.");
-    tool.set_help_footer({"geotri-curve bone.flip.gtri -o bone.msh", "geotri-curve bone.flip.gtri -o bone.vtu --order 4 --json"},
+    tool.set_help_footer({"geotri-curve bone.flip.gtri -o bone.msh", "geotri-curve bone.flip.gtri -o bone.vtu --order 4 --json",
+                          "geotri-curve bone.flip.gtri -o bone.mesh --order 2"},
                          "every element is certified",
                          {"3  the file is written, but some elements are not certified (--no-adapt, or the round cap)"});
     std::string input, output, gtri_output, fine_override, msh_version = "4.1";
     geotri::CurveAdaptOptions options;
-    bool no_adapt = false;
+    bool no_adapt = false, bezier = false;
     app.add_option("IN", input, "The geodesic triangulation, valid (geotri-flip makes it so): .gtri")
         ->required()
         ->check(CLI::ExistingFile);
-    app.add_option("-o,--output", output, "The curved elements: .msh (gmsh) or .vtu (VTK, ParaView)")
+    app.add_option("-o,--output", output, "The curved elements: .msh (gmsh), .vtu (VTK, ParaView) or .mesh (MFEM)")
         ->required()
-        ->check(tools::extension_validator({".msh", ".vtu"}, ".msh or .vtu"));
+        ->check(tools::extension_validator({".msh", ".vtu", ".mesh"}, ".msh, .vtu or .mesh"));
     app.add_option("--order", options.curve.order, "Order P of the elements, 1 to 8 (default 3)")
         ->check(tools::number_in(1, 8, false, true));
     app.add_option("--tolerance", options.tolerance,
@@ -64,9 +65,14 @@ int run(tools::Tool& tool) {
         ->check(tools::extension_validator({".gtri"}));
     app.add_option("--msh-version", msh_version, "4.1 (default) or 2.2 (for MFEM before 4.9, NekMesh and PETSc)")
         ->check(CLI::IsMember({"4.1", "2.2"}));
+    app.add_flag("--bezier", bezier,
+                 "With a .vtu output: Bezier triangles on their control points, not Lagrange triangles\n"
+                 "through the nodes (the same surface)");
     app.add_option("--fine", fine_override, "The fine mesh T, instead of the path that the .gtri file holds")
         ->check(CLI::ExistingFile);
     tool.parse();
+    if (bezier && tools::extension_of(output) != ".vtu")
+        throw CLI::ValidationError("--bezier", "needs a .vtu output, not " + output);
     tools::refuse_same_files({{"IN", input}}, {{"-o", output}, {"--gtri-out", gtri_output}});
     if (no_adapt) options.max_rounds = 0;
     options.curve.threads = tool.common.threads;
@@ -94,8 +100,10 @@ int run(tools::Tool& tool) {
 
     progress.stage("writing " + output);
     tools::StagedOutputs outputs;  // the curved mesh and the refined G, or neither
-    const geotri::MshVersion version = msh_version == "2.2" ? geotri::MshVersion::v22 : geotri::MshVersion::v41;
-    outputs.write(output, [&](const std::string& path) { geotri::write_curved_mesh(path, r.curved, version); });
+    geotri::CurvedFileOptions file;
+    file.msh_version = msh_version == "2.2" ? geotri::MshVersion::v22 : geotri::MshVersion::v41;
+    file.vtu_cells = bezier ? geotri::VtuCells::bezier : geotri::VtuCells::lagrange;
+    outputs.write(output, [&](const std::string& path) { geotri::write_curved_mesh(path, r.curved, file); });
     if (!gtri_output.empty())
         outputs.write(gtri_output, [&](const std::string& path) { geotri::write_gtri(path, g); });
     outputs.commit();

@@ -44,7 +44,7 @@ help_lists_every_option)
     run --help
     expect_rc 0
     for option in IN --output --order --tolerance --min-quality --max-rounds --no-adapt --gtri-out --msh-version \
-                  --fine --json --quiet --threads --version --help; do
+                  --bezier --fine --json --quiet --threads --version --help; do
         grep -q -- "$option" stdout || fail "--help does not mention $option"
     done
     ;;
@@ -59,6 +59,13 @@ usage_bad_output_extension)
 usage_order_out_of_range)
     make_valid_gtri "$bob" --faces 100
     run in_g.gtri -o out.msh --order 9
+    expect_usage_error
+    expect_no_output
+    ;;
+
+usage_bezier_needs_vtu)
+    make_valid_gtri "$bob" --faces 100
+    run in_g.gtri -o out.msh --bezier
     expect_usage_error
     expect_no_output
     ;;
@@ -94,6 +101,24 @@ msh_2_2_and_vtu_are_read_back)
     run in_g.gtri -o out.vtu --quiet
     expect_rc 0
     independent_check out.vtu 3
+    ;;
+
+mfem_and_bezier_vtu_are_the_msh_elements)
+    # The MFEM mesh, read by MFEM's numbering of H1 degrees of freedom, and the Bezier cells, evaluated by VTK, give
+    # node by node the elements that gmsh reads from the MSH file of the same G.
+    make_valid_gtri "$bob" --faces 100
+    for order in 2 3 4; do
+        run in_g.gtri -o "out$order.msh" --order "$order" --gtri-out "g$order.gtri" --quiet
+        expect_rc 0
+        for output in "out$order.mesh" "lagrange$order.vtu"; do
+            run "g$order.gtri" -o "$output" --order "$order" --no-adapt --quiet
+            expect_rc 0
+        done
+        run "g$order.gtri" -o "bezier$order.vtu" --order "$order" --no-adapt --bezier --quiet
+        expect_rc 0
+        independent_check "out$order.mesh" "$order" "out$order.msh"
+        independent_check "bezier$order.vtu" "$order" "lagrange$order.vtu"
+    done
     ;;
 
 no_adapt_writes_the_uncertified_and_exits_three)

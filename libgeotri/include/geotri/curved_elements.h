@@ -99,6 +99,12 @@ struct CurveAdaptResult {
 /// Throws as curve_elements() does, and InvalidInput for a tolerance or quality out of range.
 CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOptions& options = {});
 
+/// The Bézier control points of the elements, indexed as CurvedMesh::nodes: element e is the Bézier triangle of
+/// order p whose control point of multi-index gmsh_node_order(p)[n] is the result's [e.nodes[n]], the same
+/// polynomial as the Lagrange triangle through its nodes. Corners are the corner nodes; an edge's control points are
+/// shared by both of its elements, so the Bézier mesh is as conforming as the Lagrange one.
+std::vector<Eigen::Vector3d> bezier_control_points(const CurvedMesh& curved);
+
 /// The positions of the gmsh-ordered nodes of order p as multi-indices (i, j, k), i + j + k = p, each the weights
 /// of corners 0, 1, 2 times p.
 std::vector<std::array<int, 3>> gmsh_node_order(int order);
