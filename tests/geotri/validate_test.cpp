@@ -14,6 +14,7 @@
 #include <geotri_test/shared_data.h>
 
 #include "check/polyline_verdicts.h"  // libgeotri/src: untangling's verdicts kept between validations
+#include "core/plane_segments.h"      // libgeotri/src: when two segments in a fine face meet
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -455,6 +456,26 @@ TEST(Validate, crossings_on_a_cube_match_a_brute_force_oracle) {
 
 // Condition 3: a coarse vertex placed on the middle of a geodesic between two others: at a fine vertex, on a fine
 // edge, and inside a fine face.
+// Bisecting a geodesic again and again inside one fine face leaves pieces on one line, and the orientation tests of
+// two pieces are then rounding noise that can look like a crossing. These are four ends of such pieces, in the frame
+// of a fine face of fandisk (the line through its corner at the origin, at 0.5, 0.75, 0.875 and 0.9375 of the way):
+// the pieces are apart by an eighth of the line. Segments that truly cross still cross, even nearly parallel ones.
+TEST(Validate, pieces_of_one_straight_geodesic_are_apart_and_crossing_segments_cross) {
+    const Eigen::Vector2d half(0.0067341170456827765, 0.0067070851537115407);
+    const Eigen::Vector2d three_quarters(0.0033670585228413883, 0.0033535425768557703);
+    const Eigen::Vector2d seven_eighths(0.0016835292614206941, 0.0016767712884278852);
+    const Eigen::Vector2d fifteen_sixteenths(0.00084176463071034707, 0.00083838564421394258);
+    const double gap = (seven_eighths - three_quarters).norm();
+    EXPECT_NEAR(detail::segment_distance(half, three_quarters, fifteen_sixteenths, seven_eighths), gap, 1e-15);
+    EXPECT_NEAR(detail::segment_distance(fifteen_sixteenths, seven_eighths, half, three_quarters), gap, 1e-15);
+    const Eigen::Vector2d across(-three_quarters.y(), three_quarters.x());
+    EXPECT_EQ(detail::segment_distance(half, seven_eighths, three_quarters - across, three_quarters + across), 0.0);
+    const Eigen::Vector2d tilt = 1e-6 * across;
+    EXPECT_EQ(detail::segment_distance(half, fifteen_sixteenths, three_quarters - tilt + (half - three_quarters) / 4,
+                                       three_quarters + tilt - (half - three_quarters) / 4),
+              0.0);
+}
+
 TEST(Validate, geodesic_through_another_coarse_vertex_is_found) {
     const auto fine = fine_of(test::cube(4, 1.0, true, 5));
     const std::vector<int> corners = cube_corners(fine->mesh);

@@ -4,6 +4,7 @@
 #include <geotri/tangent_angles.h>
 
 #include "core/patch_overlay.h"
+#include "core/plane_segments.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -300,9 +301,12 @@ private:
             const bool in1 = nodes_[d.b].cycle > lo && nodes_[d.b].cycle < hi;
             return in0 != in1;
         }
+        const double c_to_d[2] = {orient(d.a, d.b, c.a), orient(d.a, d.b, c.b)};
         const int o1 = sign(orient(c.a, c.b, d.a)), o2 = sign(orient(c.a, c.b, d.b));
-        const int o3 = sign(orient(d.a, d.b, c.a)), o4 = sign(orient(d.a, d.b, c.b));
-        if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+        const int o3 = sign(c_to_d[0]), o4 = sign(c_to_d[1]);
+        if (o1 * o2 < 0 && o3 * o4 < 0)
+            return detail::crossing_confirmed(nodes_[c.a].pos, nodes_[c.b].pos, nodes_[d.a].pos, nodes_[d.b].pos,
+                                              c_to_d[0], c_to_d[1]);
         return (o1 == 0 && between(c.a, c.b, d.a)) || (o2 == 0 && between(c.a, c.b, d.b)) ||
                (o3 == 0 && between(d.a, d.b, c.a)) || (o4 == 0 && between(d.a, d.b, c.b));
     }
