@@ -2,6 +2,9 @@
 #include <geotri/curved_elements.h>
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/split.h>
+#include <geotri/tangent_angles.h>
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
@@ -21,6 +24,66 @@ std::vector<OpenMesh::EdgeHandle> edges_longest_first(const GeodesicTriangulatio
         return g.length(a) > g.length(b);
     });
     return edges;
+}
+
+/// The unit normal of face f of T (zero for a face of zero area).
+Eigen::Vector3d face_normal(const geodesic::Mesh& mesh, int f) {
+    const std::array<int, 3>& t = mesh.triangle(f);
+    const Eigen::Vector3d n =
+        (mesh.position(t[1]) - mesh.position(t[0])).cross(mesh.position(t[2]) - mesh.position(t[0]));
+    const double length = n.norm();
+    return length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+}
+
+/// The point of e's polyline where T's normal turns the most (a crease that the polyline crosses), when that point
+/// lies in the middle half of the edge and its turn is more than all the others together; 0 when there is none.
+/// The middle half keeps both parts at least a quarter of the edge, so that splits at creases shape G no worse than
+/// bisection by more than a bounded factor; a crease near an end comes into the middle half of a part after one or
+/// two bisections.
+std::size_t crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) {
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    const Polyline& line = g.polyline(e);
+    std::vector<double> arc(line.size(), 0.0);
+    for (std::size_t i = 1; i < line.size(); ++i)
+        arc[i] = arc[i - 1] + (mesh.point(line[i]) - mesh.point(line[i - 1])).norm();
+    // The face of T that the segment from point i to i + 1 lies in; -1 along an edge of T, where it is both sides'.
+    auto segment_face = [&](std::size_t i) {
+        return on_common_edge(mesh, line[i], line[i + 1]) ? -1 : common_face(mesh, line[i], line[i + 1]);
+    };
+    double total_turn = 0.0, best_turn = 0.0;
+    std::size_t best = 0;
+    for (std::size_t i = 1; i + 1 < line.size(); ++i) {
+        const int before = segment_face(i - 1), after = segment_face(i);
+        if (before < 0 || after < 0 || before == after) continue;
+        const double turn =
+            std::acos(std::clamp(face_normal(mesh, before).dot(face_normal(mesh, after)), -1.0, 1.0));
+        total_turn += turn;
+        const double fraction = arc[i] / arc.back();
+        if (turn > best_turn && fraction >= 0.25 && fraction <= 0.75) {
+            best_turn = turn;
+            best = i;
+        }
+    }
+    return best_turn > total_turn - best_turn ? best : 0;
+}
+
+/// Splits failing face f: at the crease crossing of one of its edges (crease_crossing(), longest edge first), or
+/// else at the middle of its longest edge whose split is not refused. A smooth element flattens as it shrinks, but
+/// one that straddles a crease of T keeps the crease's angle at every size: only edges of G along the crease, which
+/// vertices of G on it start, take the crease out of its elements. Returns whether a split was made, and if so, the
+/// faces that it changed (those of the edge split).
+bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, std::array<OpenMesh::FaceHandle, 2>& sides) {
+    const std::vector<OpenMesh::EdgeHandle> edges = edges_longest_first(g, f);
+    auto split = [&](OpenMesh::EdgeHandle e, std::size_t crossing) {
+        const CoarseMesh& coarse = g.coarse();
+        sides = {coarse.face_handle(coarse.halfedge_handle(e, 0)), coarse.face_handle(coarse.halfedge_handle(e, 1))};
+        return crossing > 0 ? split_edge_at_point(g, e, crossing).done : split_edge(g, e, 0.5).done;
+    };
+    for (OpenMesh::EdgeHandle e : edges)
+        if (const std::size_t crossing = crease_crossing(g, e); crossing > 0 && split(e, crossing)) return true;
+    for (OpenMesh::EdgeHandle e : edges)
+        if (split(e, 0)) return true;
+    return false;
 }
 
 }  // namespace
@@ -44,23 +107,18 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
             result.round_cap_reached = true;
             return result;
         }
-        // Each failing face, in face order, that no split of this round has changed yet: its longest edge is
-        // bisected, or where that split is refused, the next longest. Face handles stay valid across splits.
+        // Each failing face, in face order, that no split of this round has changed yet, is split
+        // (split_for_curving()). Face handles stay valid across splits.
         std::vector<char> changed(g.coarse().n_faces(), 0);
         int splits = 0;
         for (OpenMesh::FaceHandle f : failing) {
             if (changed[static_cast<std::size_t>(f.idx())]) continue;
-            for (OpenMesh::EdgeHandle e : edges_longest_first(g, f)) {
-                const CoarseMesh& coarse = g.coarse();
-                const std::array<OpenMesh::FaceHandle, 2> sides{coarse.face_handle(coarse.halfedge_handle(e, 0)),
-                                                               coarse.face_handle(coarse.halfedge_handle(e, 1))};
-                if (!split_edge(g, e, 0.5).done) continue;
-                for (OpenMesh::FaceHandle side : sides)
-                    if (side.is_valid() && static_cast<std::size_t>(side.idx()) < changed.size())
-                        changed[static_cast<std::size_t>(side.idx())] = 1;
-                ++splits;
-                break;
-            }
+            std::array<OpenMesh::FaceHandle, 2> sides;
+            if (!split_for_curving(g, f, sides)) continue;
+            for (OpenMesh::FaceHandle side : sides)
+                if (side.is_valid() && static_cast<std::size_t>(side.idx()) < changed.size())
+                    changed[static_cast<std::size_t>(side.idx())] = 1;
+            ++splits;
         }
         if (splits == 0) return result;  // nothing mends what is left: the certificates say why
         // Bisection alone leaves thin triangles behind, whose corners' plane tells little of their surface: flips
