@@ -35,7 +35,8 @@ int run(tools::Tool& tool) {
                     "through a bijective map of each patch. Every element is certified by Bernstein bounds: its\n"
                     "Jacobian is positive against the plane of its corners and against every face of T it covers,\n"
                     "its min J / max J is at least --min-quality, and it lies within --tolerance of its patch. G is\n"
-                    "refined by bisection around the elements that fail, until none does.");
+                    "refined around the elements that fail, at the creases of T that they cross or else by\n"
+                    "bisection, until none does.");
     tool.set_help_footer({"geotri-curve bone.flip.gtri -o bone.msh", "geotri-curve bone.flip.gtri -o bone.vtu --order 4 --json",
                           "geotri-curve bone.flip.gtri -o bone.mesh --order 2"},
                          "every element is certified",
