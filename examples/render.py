@@ -52,6 +52,9 @@ panels:
   curves:FINE_MESH:CURVES      the fine mesh, smooth grey, with the geodesic curves on it as dark tubes
   overlay:OVERLAY.vtu[:CURVES] geotri-overlay's triangles coloured by their 'colour' cell array,
                                optionally with the curves on top
+  curved:CURVED.vtu            geotri-curve's curved elements (Lagrange or Bezier cells), each subdivided so
+                               that it shows its curvature, coloured by its certified min J / max J ('quality':
+                               red at 0, yellow at 0.5, green at 1), with its curved sides drawn dark
   MESH and FINE_MESH: .off, .obj, .ply, .stl (or VTK .vtp, .vtk); CURVES: polylines in .vtp, .vtk,
   or .obj ('l' lines).
 
@@ -105,7 +108,8 @@ def parse_args(argv):
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("out", metavar="OUT.png", help="the PNG to write (replaced atomically)")
-    parser.add_argument("panels", metavar="PANEL", nargs="+", help="coarse:..., curves:... or overlay:... (below)")
+    parser.add_argument("panels", metavar="PANEL", nargs="+",
+                        help="coarse:..., curves:..., overlay:... or curved:... (below)")
     parser.add_argument("--width", type=panel_size, default=800, metavar="W",
                         help="width of each panel in pixels (default: %(default)s)")
     parser.add_argument("--height", type=panel_size, default=700, metavar="H",
@@ -131,13 +135,13 @@ def parse_panel(spec):
     """Splits a PANEL argument into (kind, [files]); checks that the files exist."""
     kind, _, rest = spec.partition(":")
     parts = rest.split(":") if rest else []
-    expected = {"coarse": (1, 1), "curves": (2, 2), "overlay": (1, 2)}
+    expected = {"coarse": (1, 1), "curves": (2, 2), "overlay": (1, 2), "curved": (1, 1)}
     if kind not in expected:
-        raise InputError(f"{spec}: unknown panel kind '{kind}' (expected coarse:, curves: or overlay:)")
+        raise InputError(f"{spec}: unknown panel kind '{kind}' (expected coarse:, curves:, overlay: or curved:)")
     low, high = expected[kind]
     if not low <= len(parts) <= high or not all(parts):
         forms = {"coarse": "coarse:MESH", "curves": "curves:FINE_MESH:CURVES",
-                 "overlay": "overlay:OVERLAY.vtu[:CURVES]"}
+                 "overlay": "overlay:OVERLAY.vtu[:CURVES]", "curved": "curved:CURVED.vtu"}
         raise InputError(f"{spec}: expected {forms[kind]}")
     for path in parts:
         if not os.path.isfile(path):
@@ -203,7 +207,8 @@ def import_vtk():
     except ImportError:
         raise InputError(f"python3-vtk9 is not installed ({INSTALL_HINT})")
     vtk = types.SimpleNamespace(**{name: getattr(module, name)
-                                   for module in modules for name in dir(module) if name.startswith("vtk")})
+                                   for module in modules for name in dir(module) if name.startswith("vtk")},
+                                reference=modules[0].reference)  # vtkCommonCore's by-reference argument
 
 
 # ----------------------------------------------------------------------------------------------------------------
@@ -391,8 +396,54 @@ def read_overlay(path):
     return data
 
 
+# Points per curved side, and the subdivision level of each curved element's surface: enough for a smooth picture
+# of elements of order up to 4.
+CURVED_SIDE_POINTS = 16
+CURVED_SUBDIVISION = 3
+VTK_LAGRANGE_TRIANGLE, VTK_BEZIER_TRIANGLE = 69, 76  # VTK's cell types
+
+
+def read_curved(path):
+    """geotri-curve's unstructured grid of curved triangles: (the elements' surface, subdivided, as polydata whose
+    cells keep the 'quality' array; the elements' sides as polylines, evaluated on the cells)."""
+    if os.path.splitext(path)[1].lower() != ".vtu":
+        raise InputError(f"{path}: curved elements must be a .vtu file (geotri-curve -o X.vtu)")
+    grid = run_vtk_reader(path, vtk.vtkXMLUnstructuredGridReader(), "VTK XML unstructured grid")
+    if grid.GetCellData().GetArray("quality") is None:
+        raise InputError(f"{path}: has no 'quality' cell array (write it with geotri-curve)")
+    curved_types = (VTK_LAGRANGE_TRIANGLE, VTK_BEZIER_TRIANGLE)
+    if grid.GetNumberOfCells() == 0 or any(grid.GetCellType(c) not in curved_types
+                                           for c in range(grid.GetNumberOfCells())):
+        raise InputError(f"{path}: not every cell is a Lagrange or Bezier triangle")
+    surface = vtk.vtkDataSetSurfaceFilter()
+    surface.SetInputData(grid)
+    surface.SetNonlinearSubdivisionLevel(CURVED_SUBDIVISION)
+    surface.Update()
+    # Each side of each cell, evaluated at parametric points: the cells' own curves, not the subdivision's chords.
+    points, lines = vtk.vtkPoints(), vtk.vtkCellArray()
+    corners = ((0.0, 0.0), (1.0, 0.0), (0.0, 1.0))
+    x, weights = [0.0] * 3, [0.0] * 64
+    sub = vtk.reference(0)
+    for c in range(grid.GetNumberOfCells()):
+        cell = grid.GetCell(c)
+        for side in range(3):
+            (u0, v0), (u1, v1) = corners[side], corners[(side + 1) % 3]
+            lines.InsertNextCell(CURVED_SIDE_POINTS + 1)
+            for k in range(CURVED_SIDE_POINTS + 1):
+                t = k / CURVED_SIDE_POINTS
+                cell.EvaluateLocation(sub, [u0 + t * (u1 - u0), v0 + t * (v1 - v0), 0.0], x, weights)
+                lines.InsertCellPoint(points.InsertNextPoint(x))
+    sides = vtk.vtkPolyData()
+    sides.SetPoints(points)
+    sides.SetLines(lines)
+    return surface.GetOutput(), sides
+
+
 def load_panel(kind, files):
     """Reads one panel's files: a dict with 'surface' (polydata) and maybe 'curves' (polydata)."""
+    if kind == "curved":
+        surface, sides = read_curved(files[0])
+        return {"kind": kind, "surface": surface, "curves": sides}
     if kind == "coarse":
         return {"kind": kind, "surface": read_mesh(files[0])}
     if kind == "curves":
@@ -545,6 +596,31 @@ def overlay_actor(data):
     return actor
 
 
+def quality_actor(data):
+    """Each cell painted by its 'quality' (certified min J / max J): red at 0, through yellow at 0.5, to green at 1."""
+    table = vtk.vtkLookupTable()
+    table.SetHueRange(0.0, 0.33)
+    table.SetSaturationRange(0.75, 0.75)
+    table.SetValueRange(0.95, 0.85)
+    table.SetTableRange(0.0, 1.0)
+    table.Build()
+    mapper = vtk.vtkPolyDataMapper()
+    mapper.SetInputData(smooth_normals(data))
+    mapper.SetScalarModeToUseCellFieldData()
+    mapper.SelectColorArray("quality")
+    mapper.SetLookupTable(table)
+    mapper.UseLookupTableScalarRangeOn()
+    mapper.ScalarVisibilityOn()
+    actor = vtk.vtkActor()
+    actor.SetMapper(mapper)
+    prop = actor.GetProperty()
+    prop.SetInterpolationToPhong()
+    prop.SetAmbient(0.15)
+    prop.SetDiffuse(0.85)
+    prop.SetSpecular(0.1)
+    return actor
+
+
 def curves_actor(data, pixel, args):
     """Dark tubes of a fixed width in pixels (about 2.6 at the default height), so that the curves stay visible
     at any mesh size without drowning a small picture."""
@@ -584,6 +660,8 @@ def panel_actors(panel, args, pixel):
         actors = [coarse_actor(panel["surface"], args)]
     elif panel["kind"] == "curves":
         actors = [surface_actor(panel["surface"], FINE_SURFACE, smooth=True)]
+    elif panel["kind"] == "curved":
+        actors = [quality_actor(panel["surface"])]
     else:
         actors = [overlay_actor(panel["surface"])]
     if "curves" in panel:

@@ -43,13 +43,15 @@ mkdir -p "$out"
 scripts/install-deps.sh --render
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build_dir" -j"$(nproc)" \
-  --target geotri-decimate geotri-trace geotri-flip geotri-refine geotri-check geotri-overlay geotri-distance
+  --target geotri-decimate geotri-trace geotri-flip geotri-refine geotri-check geotri-overlay geotri-distance \
+  geotri-curve
 tools=$(cd "$build_dir/tools" && pwd)
 
 # The Makefile works on the meshes in the folder where it runs: the mesh goes there as a link.
 ln -sf "$mesh" "$out/$(basename "$mesh")"
 echo && echo "== The pipeline (examples/Makefile)"
-make -f "$root/examples/Makefile" -C "$out" GEOTRI_BIN="$tools" "$name.png" "$name.refined.png" "$name.check.txt"
+make -f "$root/examples/Makefile" -C "$out" GEOTRI_BIN="$tools" "$name.png" "$name.refined.png" "$name.check.txt" \
+  "$name.curved.png" "$name.curved.msh"
 verdict=$(sed -n '1s/^[^:]*: //p' "$out/$name.check.txt")
 
 echo && echo "== Geodesic distance from vertex 0"
@@ -68,6 +70,8 @@ The geodesic triangulation is $verdict (geotri-check's full report: $name.check.
 Outputs in $root/$out/:
   $name.png                    coarse mesh, traced geodesics, flipped triangulation coloured by patch
   $name.refined.png            the refined triangulation
+  $name.curved.png             certified curved P3 elements, by min J / max J, beside their patches
+  $name.curved.msh, .vtu       the curved elements for gmsh and solvers, and for ParaView
   $name.coarse.off             the decimated mesh ($name.coarse.paths: its edges on the mesh, for trace)
   $name.traced.gtri            its edges traced as geodesics (coarse mesh, vertex locations, polylines)
   $name.flipped.gtri           after geotri-flip

@@ -96,9 +96,9 @@ pictures_are_rendered)
         exit 77
     fi
     cp "$data/classic/bob_small.ply" .
-    pipeline FACES=100 bob_small.png bob_small.refined.png
+    pipeline FACES=100 bob_small.png bob_small.refined.png bob_small.curved.png
     expect_rc 0
-    for png in bob_small.png bob_small.refined.png; do
+    for png in bob_small.png bob_small.refined.png bob_small.curved.png; do
         [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "$png is not a PNG"
     done
     ;;
