@@ -96,7 +96,8 @@ struct CurveAdaptResult {
 /// so that G stays valid and isogeometric): where one of its edges crosses a crease of T (a point of its polyline
 /// where T's normal turns more than at all its other points together, in the middle half of the edge), at that
 /// point, so that G's edges come to follow the crease; else its longest edge at the middle of its polyline. Then
-/// flips towards geodesic Delaunay shape G again, and G is curved again; at most max_rounds rounds. A smooth patch
+/// flips towards geodesic Delaunay from the new vertices' links shape G again, and the elements of the faces that
+/// changed are made again; at most max_rounds rounds. A smooth patch
 /// flattens as it shrinks and a patch off the creases is smooth, so the failures go, but for what a refused split or
 /// the cap leaves: `failing` counts them, and the elements' certificates say why. Deterministic. Throws as
 /// curve_elements() does, and InvalidInput for a tolerance or quality out of range.

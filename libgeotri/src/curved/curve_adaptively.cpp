@@ -1,8 +1,11 @@
 #include <geodesic/errors.h>
 #include <geotri/curved_elements.h>
-#include <geotri/flip_to_delaunay.h>
 #include <geotri/split.h>
 #include <geotri/tangent_angles.h>
+
+#include "core/workspace.h"
+#include "curved/element_cache.h"
+#include "pipeline/flip_to_delaunay_detail.h"
 
 #include <Eigen/Geometry>
 
@@ -71,13 +74,16 @@ std::size_t crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHandle
 /// else at the middle of its longest edge whose split is not refused. A smooth element flattens as it shrinks, but
 /// one that straddles a crease of T keeps the crease's angle at every size: only edges of G along the crease, which
 /// vertices of G on it start, take the crease out of its elements. Returns whether a split was made, and if so, the
-/// faces that it changed (those of the edge split).
-bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, std::array<OpenMesh::FaceHandle, 2>& sides) {
+/// faces that it changed (those of the edge split) and the new vertex.
+bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, std::array<OpenMesh::FaceHandle, 2>& sides,
+                       OpenMesh::VertexHandle& vertex) {
     const std::vector<OpenMesh::EdgeHandle> edges = edges_longest_first(g, f);
     auto split = [&](OpenMesh::EdgeHandle e, std::size_t crossing) {
         const CoarseMesh& coarse = g.coarse();
         sides = {coarse.face_handle(coarse.halfedge_handle(e, 0)), coarse.face_handle(coarse.halfedge_handle(e, 1))};
-        return crossing > 0 ? split_edge_at_point(g, e, crossing).done : split_edge(g, e, 0.5).done;
+        const SplitResult r = crossing > 0 ? split_edge_at_point(g, e, crossing) : split_edge(g, e, 0.5);
+        vertex = r.vertex;
+        return r.done;
     };
     for (OpenMesh::EdgeHandle e : edges)
         if (const std::size_t crossing = crease_crossing(g, e); crossing > 0 && split(e, crossing)) return true;
@@ -95,8 +101,10 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
         throw InvalidInput("curve_adaptively: the minimum quality is outside [0, 1]");
     if (options.max_rounds < 0) throw InvalidInput("curve_adaptively: max_rounds is negative");
     CurveAdaptResult result;
+    // A round changes G around the failing elements only: the others are kept, not made again.
+    detail::ElementCache cache;
     for (;;) {
-        result.curved = curve_elements(g, options.curve);
+        result.curved = detail::curve_elements(g, options.curve, cache);
         const double max_distance = options.tolerance * result.curved.diagonal;
         std::vector<OpenMesh::FaceHandle> failing;
         for (const CurvedElement& element : result.curved.elements)
@@ -110,22 +118,28 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
         // Each failing face, in face order, that no split of this round has changed yet, is split
         // (split_for_curving()). Face handles stay valid across splits.
         std::vector<char> changed(g.coarse().n_faces(), 0);
+        std::vector<OpenMesh::EdgeHandle> around;  // the links of the new vertices
         int splits = 0;
         for (OpenMesh::FaceHandle f : failing) {
             if (changed[static_cast<std::size_t>(f.idx())]) continue;
             std::array<OpenMesh::FaceHandle, 2> sides;
-            if (!split_for_curving(g, f, sides)) continue;
+            OpenMesh::VertexHandle vertex;
+            if (!split_for_curving(g, f, sides, vertex)) continue;
             for (OpenMesh::FaceHandle side : sides)
                 if (side.is_valid() && static_cast<std::size_t>(side.idx()) < changed.size())
                     changed[static_cast<std::size_t>(side.idx())] = 1;
+            for (OpenMesh::HalfedgeHandle h : g.coarse().voh_range(vertex))
+                around.push_back(g.coarse().edge_handle(g.coarse().next_halfedge_handle(h)));
             ++splits;
         }
         if (splits == 0) return result;  // nothing mends what is left: the certificates say why
-        // Bisection alone leaves thin triangles behind, whose corners' plane tells little of their surface: flips
-        // towards geodesic Delaunay (which keep G valid) shape them again.
+        // Splits leave thin triangles behind, whose corners' plane tells little of their surface: flips towards
+        // geodesic Delaunay (which keep G valid) shape them again, starting from the new vertices' links; the rest
+        // of G is as the round found it.
         FlipToDelaunayOptions flips;
         flips.threads = options.curve.threads;
-        flip_to_delaunay(g, flips);
+        FlipToDelaunayResult flipped;
+        detail::improve_around(g, around, flips, Workspace{}, flipped);
         ++result.rounds;
         result.splits += splits;
     }

@@ -5,7 +5,9 @@
 
 #include "core/plane_segments.h"
 #include "core/thread_count.h"
+#include "core/patch_overlay.h"
 #include "curved/bernstein_triangle.h"
+#include "curved/element_cache.h"
 #include "curved/patch_parameterization.h"
 #include "curved/sign_bounds.h"
 
@@ -42,58 +44,52 @@ std::vector<std::vector<SurfacePoint>> edge_nodes(const GeodesicTriangulation& g
     return nodes;
 }
 
-/// An element as made for one face: its node indices for the corners and edges (the interior ones to come), and
-/// its interior nodes' points, in gmsh's order.
-struct MadeElement {
-    CurvedElement element;
-    std::vector<SurfacePoint> interior;
-    std::vector<Eigen::Vector3d> interior_positions;
-};
+/// The sides of face f from halfedge_handle(f): side s runs from corner s to corner s + 1.
+std::array<OpenMesh::HalfedgeHandle, 3> sides_of(const CoarseMesh& coarse, OpenMesh::FaceHandle f) {
+    std::array<OpenMesh::HalfedgeHandle, 3> sides;
+    int s = 0;
+    for (OpenMesh::HalfedgeHandle h : coarse.fh_range(f)) sides[static_cast<std::size_t>(s++)] = h;
+    return sides;
+}
 
-/// The element of coarse face f, certified. `first_edge_node[e]` is the index in the node table of the first inner
-/// node of edge e.
-MadeElement make_element(const GeodesicTriangulation& g, const Overlay& overlay, OpenMesh::FaceHandle f,
-                         const std::vector<std::vector<SurfacePoint>>& on_edges,
-                         const std::vector<int>& first_edge_node, const CurveOptions& options) {
+/// The element of coarse face f, certified: its interior nodes in gmsh's order, their positions, and its certificate.
+detail::ElementGeometry make_element(const GeodesicTriangulation& g, const Overlay& overlay, OpenMesh::FaceHandle f,
+                                     const std::vector<int>& patch_triangles,
+                                     const std::vector<std::vector<SurfacePoint>>& on_edges,
+                                     const CurveOptions& options) {
     const CoarseMesh& coarse = g.coarse();
     const geodesic::Mesh& mesh = g.fine().mesh;
     const int p = options.order;
     const std::vector<std::array<int, 3>> indices = detail::multi_indices(p);
     std::vector<SurfacePoint> nodes(indices.size());
     std::vector<Eigen::Vector3d> positions(indices.size());
-    std::vector<int> table(indices.size(), -1);  // per multi-index: its index in the node table, when known
-    auto set = [&](int j, int k, const SurfacePoint& point, int in_table) {
+    std::vector<char> on_boundary(indices.size(), 0);
+    auto set = [&](int j, int k, const SurfacePoint& point) {
         nodes[multi_index_position(j, k)] = point;
         positions[multi_index_position(j, k)] = mesh.point(point);
-        table[multi_index_position(j, k)] = in_table;
+        on_boundary[multi_index_position(j, k)] = 1;
     };
 
-    std::array<OpenMesh::HalfedgeHandle, 3> sides;
-    {
-        int s = 0;
-        for (OpenMesh::HalfedgeHandle h : coarse.fh_range(f)) sides[static_cast<std::size_t>(s++)] = h;
-    }
+    const std::array<OpenMesh::HalfedgeHandle, 3> sides = sides_of(coarse, f);
     // Corner s is the from-vertex of side s; side s runs from corner s to corner s + 1. Multi-index (i, j, k) is
     // the weights of corners 0, 1, 2 times p.
     for (std::size_t s = 0; s < 3; ++s) {
         const OpenMesh::HalfedgeHandle h = sides[s];
         const std::array<int, 3> corner_index{s == 0 ? p : 0, s == 1 ? p : 0, s == 2 ? p : 0};
-        const OpenMesh::VertexHandle corner = coarse.from_vertex_handle(h);
-        set(corner_index[1], corner_index[2], g.location(corner), corner.idx());
+        set(corner_index[1], corner_index[2], g.location(coarse.from_vertex_handle(h)));
         const OpenMesh::EdgeHandle e = coarse.edge_handle(h);
         const bool along = coarse.halfedge_handle(e, 0) == h;
         for (int m = 1; m < p; ++m) {
             const int along_edge = along ? m - 1 : p - m - 1;
-            const SurfacePoint& point =
-                on_edges[static_cast<std::size_t>(e.idx())][static_cast<std::size_t>(along_edge)];
             // m/p of the way from corner s to corner s + 1.
             std::array<int, 3> index{0, 0, 0};
             index[s] = p - m;
             index[(s + 1) % 3] = m;
-            set(index[1], index[2], point, first_edge_node[static_cast<std::size_t>(e.idx())] + along_edge);
+            set(index[1], index[2],
+                on_edges[static_cast<std::size_t>(e.idx())][static_cast<std::size_t>(along_edge)]);
         }
     }
-    const detail::PatchParameterization map(g, overlay, f);
+    const detail::PatchParameterization map(g, overlay, f, patch_triangles);
     for (const std::array<int, 3>& index : indices) {
         if (index[0] == 0 || index[1] == 0 || index[2] == 0) continue;
         const std::optional<detail::PatchParameterization::Preimage> at = map.preimage(detail::node_of(index, p));
@@ -104,10 +100,8 @@ MadeElement make_element(const GeodesicTriangulation& g, const Overlay& overlay,
         positions[multi_index_position(index[1], index[2])] = at->position;
     }
 
-    MadeElement made;
-    CurvedElement& element = made.element;
-    element.face = f;
-    ElementCertificate& certificate = element.certificate;
+    detail::ElementGeometry made;
+    ElementCertificate& certificate = made.certificate;
     const std::vector<Eigen::Vector3d> x = detail::bernstein_from_lagrange(positions, p);
 
     const Eigen::Vector3d& x0 = positions[multi_index_position(0, 0)];
@@ -150,11 +144,9 @@ MadeElement make_element(const GeodesicTriangulation& g, const Overlay& overlay,
 
     for (const std::array<int, 3>& index : gmsh_node_order(p)) {
         const std::size_t at = multi_index_position(index[1], index[2]);
-        element.nodes.push_back(table[at]);
-        if (table[at] == -1) {
-            made.interior.push_back(nodes[at]);
-            made.interior_positions.push_back(positions[at]);
-        }
+        if (on_boundary[at]) continue;
+        made.interior.push_back(nodes[at]);
+        made.interior_positions.push_back(positions[at]);
     }
     return made;
 }
@@ -188,6 +180,13 @@ std::vector<std::array<int, 3>> gmsh_node_order(int order) {
 }
 
 CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& options) {
+    detail::ElementCache cache;
+    return detail::curve_elements(g, options, cache);
+}
+
+namespace detail {
+
+CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& options, ElementCache& cache) {
     if (options.order < 1 || options.order > k_max_order)
         throw InvalidInput("curve_elements: the order " + std::to_string(options.order) + " is outside [1, " +
                            std::to_string(k_max_order) + "]");
@@ -203,10 +202,54 @@ CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& op
     }
     curved.diagonal = (hi - lo).norm();
 
-    const Overlay overlay = build_overlay(g);
     const CoarseMesh& coarse = g.coarse();
+    const auto faces = static_cast<int>(coarse.n_faces());
+    // The faces whose element is not in the cache as they are now.
+    cache.by_face.resize(static_cast<std::size_t>(faces));
+    std::vector<int> todo;
+    for (int f = 0; f < faces; ++f) {
+        std::optional<CachedElement>& cached = cache.by_face[static_cast<std::size_t>(f)];
+        const std::array<OpenMesh::HalfedgeHandle, 3> sides = sides_of(coarse, OpenMesh::FaceHandle(f));
+        bool same = cached.has_value();
+        for (std::size_t s = 0; s < 3 && same; ++s)
+            same = cached->corners[s] == coarse.from_vertex_handle(sides[s]).idx() &&
+                   cached->paths[s] == g.path(sides[s]);
+        if (same) continue;
+        cached = CachedElement{};
+        for (std::size_t s = 0; s < 3; ++s) {
+            cached->corners[s] = coarse.from_vertex_handle(sides[s]).idx();
+            cached->paths[s] = g.path(sides[s]);
+        }
+        todo.push_back(f);
+    }
+    // All of T is cut when every face is to be made; the changed faces' patches alone otherwise.
+    const Overlay overlay = static_cast<int>(todo.size()) == faces ? build_overlay(g)
+                            : todo.empty()                        ? Overlay{}
+                                                                  : build_patch_overlay(g, todo);
+    const std::vector<std::vector<int>> by_patch = triangles_by_patch(overlay, coarse.n_faces());
     const int p = options.order;
     const std::vector<std::vector<SurfacePoint>> on_edges = edge_nodes(g, p);
+
+    // Each face's failure is kept apart, and the first face's is thrown: the same for any thread count.
+    std::vector<std::exception_ptr> failures(todo.size());
+    const int threads = team_size(options.threads);
+    const auto count = static_cast<int>(todo.size());
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+    for (int i = 0; i < count; ++i) {
+        const auto f = static_cast<std::size_t>(todo[static_cast<std::size_t>(i)]);
+        try {
+            cache.by_face[f]->geometry =
+                make_element(g, overlay, OpenMesh::FaceHandle(static_cast<int>(f)), by_patch[f], on_edges, options);
+        } catch (...) {
+            failures[static_cast<std::size_t>(i)] = std::current_exception();
+        }
+    }
+    for (std::size_t i = 0; i < failures.size(); ++i)
+        if (failures[i]) {
+            cache.by_face[static_cast<std::size_t>(todo[i])].reset();  // not made: to be made again next time
+            std::rethrow_exception(failures[i]);
+        }
+
     // The node table: the corners, then the edges' inner nodes, then the interior nodes, face by face.
     for (OpenMesh::VertexHandle v : coarse.vertices()) curved.nodes.push_back(g.location(v));
     std::vector<int> first_edge_node(coarse.n_edges());
@@ -215,45 +258,55 @@ CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& op
         for (const SurfacePoint& point : on_edges[static_cast<std::size_t>(e.idx())]) curved.nodes.push_back(point);
     }
     for (const SurfacePoint& point : curved.nodes) curved.positions.push_back(mesh.point(point));
-    std::vector<int> colour(coarse.n_faces(), 0);
-    for (std::size_t t = 0; t < overlay.triangles.size(); ++t)
-        if (overlay.patch[t] >= 0) colour[static_cast<std::size_t>(overlay.patch[t])] = overlay.colour[t];
-
-    const auto faces = static_cast<int>(coarse.n_faces());
-    std::vector<MadeElement> made(static_cast<std::size_t>(faces));
-    // Each face's failure is kept apart, and the first face's is thrown: the same for any thread count.
-    std::vector<std::exception_ptr> failures(static_cast<std::size_t>(faces));
-    const int threads = detail::team_size(options.threads);
-#pragma omp parallel for schedule(dynamic) num_threads(threads)
-    for (int f = 0; f < faces; ++f) {
-        try {
-            made[static_cast<std::size_t>(f)] =
-                make_element(g, overlay, OpenMesh::FaceHandle(f), on_edges, first_edge_node, options);
-        } catch (...) {
-            failures[static_cast<std::size_t>(f)] = std::current_exception();
-        }
+    // Greedy colours of the patches in face order: for a valid G, patches meet where their faces share an edge.
+    std::vector<int> colour(coarse.n_faces(), -1);
+    for (OpenMesh::FaceHandle f : coarse.faces()) {
+        std::vector<char> taken(4, 0);
+        for (OpenMesh::FaceHandle n : coarse.ff_range(f))
+            if (n.idx() < f.idx()) taken[static_cast<std::size_t>(colour[static_cast<std::size_t>(n.idx())])] = 1;
+        int c = 0;
+        while (taken[static_cast<std::size_t>(c)]) ++c;
+        colour[static_cast<std::size_t>(f.idx())] = c;
     }
-    for (const std::exception_ptr& failure : failures)
-        if (failure) std::rethrow_exception(failure);
 
-    curved.elements.reserve(made.size());
-    for (MadeElement& m : made) {
+    curved.elements.reserve(static_cast<std::size_t>(faces));
+    const std::vector<std::array<int, 3>> order = gmsh_node_order(p);
+    for (OpenMesh::FaceHandle f : coarse.faces()) {
+        const ElementGeometry& made = cache.by_face[static_cast<std::size_t>(f.idx())]->geometry;
+        CurvedElement element;
+        element.face = f;
+        element.certificate = made.certificate;
+        const std::array<OpenMesh::HalfedgeHandle, 3> sides = sides_of(coarse, f);
         std::size_t next = 0;
-        for (int& node : m.element.nodes)
-            if (node == -1) {
-                node = static_cast<int>(curved.nodes.size());
-                curved.nodes.push_back(m.interior[next]);
-                curved.positions.push_back(m.interior_positions[next++]);
+        for (const std::array<int, 3>& index : order) {
+            const int corners_on = (index[0] == 0) + (index[1] == 0) + (index[2] == 0);
+            if (corners_on == 2) {  // a corner: the one of weight p
+                const std::size_t s = index[0] == p ? 0 : index[1] == p ? 1 : 2;
+                element.nodes.push_back(coarse.from_vertex_handle(sides[s]).idx());
+            } else if (corners_on == 1) {  // on side s, from corner s to corner s + 1, m/p of the way
+                const std::size_t s = index[2] == 0 ? 0 : index[0] == 0 ? 1 : 2;
+                const int m = index[(s + 1) % 3];
+                const OpenMesh::EdgeHandle e = coarse.edge_handle(sides[s]);
+                const bool along = coarse.halfedge_handle(e, 0) == sides[s];
+                element.nodes.push_back(first_edge_node[static_cast<std::size_t>(e.idx())] +
+                                        (along ? m - 1 : p - m - 1));
+            } else {
+                element.nodes.push_back(static_cast<int>(curved.nodes.size()));
+                curved.nodes.push_back(made.interior[next]);
+                curved.positions.push_back(made.interior_positions[next++]);
             }
-        const SurfacePoint& corner = curved.nodes[static_cast<std::size_t>(m.element.nodes[0])];
+        }
+        const SurfacePoint& corner = curved.nodes[static_cast<std::size_t>(element.nodes[0])];
         const int fine_vertex = corner.kind == geodesic::PointKind::vertex ? corner.vertex
                                 : corner.kind == geodesic::PointKind::edge ? corner.edge_v0
                                                                            : mesh.triangle(corner.face)[0];
-        m.element.component = g.fine().component[static_cast<std::size_t>(fine_vertex)];
-        m.element.colour = colour[static_cast<std::size_t>(m.element.face.idx())];
-        curved.elements.push_back(std::move(m.element));
+        element.component = g.fine().component[static_cast<std::size_t>(fine_vertex)];
+        element.colour = colour[static_cast<std::size_t>(f.idx())];
+        curved.elements.push_back(std::move(element));
     }
     return curved;
 }
+
+}  // namespace detail
 
 }  // namespace geotri

@@ -55,8 +55,18 @@ double tan_half_angle(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
 
 }  // namespace
 
+std::vector<std::vector<int>> triangles_by_patch(const Overlay& overlay, std::size_t faces) {
+    std::vector<std::vector<int>> by_patch(faces);
+    for (std::size_t t = 0; t < overlay.triangles.size(); ++t) {
+        const int patch = overlay.patch[t];
+        if (patch >= 0 && static_cast<std::size_t>(patch) < faces)
+            by_patch[static_cast<std::size_t>(patch)].push_back(static_cast<int>(t));
+    }
+    return by_patch;
+}
+
 PatchParameterization::PatchParameterization(const GeodesicTriangulation& g, const Overlay& overlay,
-                                             OpenMesh::FaceHandle f)
+                                             OpenMesh::FaceHandle f, const std::vector<int>& patch_triangles)
     : fine_(&g.fine().mesh), overlay_(&overlay) {
     const CoarseMesh& coarse = g.coarse();
     const int face = f.idx();
@@ -65,9 +75,6 @@ PatchParameterization::PatchParameterization(const GeodesicTriangulation& g, con
         throw InvalidInput(name + ": its patch is not a disk bounded by its three polylines");
 
     // The patch's overlay triangles, with their vertices numbered locally in order of first use.
-    std::vector<int> patch_triangles;
-    for (std::size_t t = 0; t < overlay.triangles.size(); ++t)
-        if (overlay.patch[t] == face) patch_triangles.push_back(static_cast<int>(t));
     if (patch_triangles.empty()) throw InvalidInput(name + ": its patch holds no overlay triangle");
     std::unordered_map<int, int> local;
     std::vector<int> vertex_of;  // per local vertex: its overlay vertex

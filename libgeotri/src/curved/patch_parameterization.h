@@ -15,12 +15,17 @@
 
 namespace geotri::detail {
 
+/// Per coarse face (of `faces`), the indices of the overlay triangles in its patch, in increasing order.
+std::vector<std::vector<int>> triangles_by_patch(const Overlay& overlay, std::size_t faces);
+
 class PatchParameterization {
 public:
     /// The map of coarse face f, whose corners are the from-vertices of its halfedges in the order of fh_range(f)
-    /// from halfedge_handle(f). `overlay` is build_overlay(g) of a G valid at f. Throws InvalidInput when f's patch
+    /// from halfedge_handle(f). `overlay` is build_overlay(g) of a G valid at f, and `patch_triangles` the indices
+    /// of its triangles in f's patch, in increasing order (triangles_by_patch()). Throws InvalidInput when f's patch
     /// is not a disk bounded by its three polylines, and NumericalError when the linear system cannot be solved.
-    PatchParameterization(const GeodesicTriangulation& g, const Overlay& overlay, OpenMesh::FaceHandle f);
+    PatchParameterization(const GeodesicTriangulation& g, const Overlay& overlay, OpenMesh::FaceHandle f,
+                          const std::vector<int>& patch_triangles);
 
     /// One overlay triangle of the patch: its overlay vertices, their reference points, and its fine face.
     struct Triangle {
