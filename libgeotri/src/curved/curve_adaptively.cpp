@@ -71,12 +71,12 @@ std::size_t crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHandle
 }
 
 /// Splits failing face f: at the crease crossing of one of its edges (crease_crossing(), longest edge first), or
-/// else at the middle of its longest edge whose split is not refused. A smooth element flattens as it shrinks, but
+/// else at the middle of its longest edge whose split is not refused, or else at `centre`, inside its patch. A smooth element flattens as it shrinks, but
 /// one that straddles a crease of T keeps the crease's angle at every size: only edges of G along the crease, which
 /// vertices of G on it start, take the crease out of its elements. Returns whether a split was made, and if so, the
 /// faces that it changed (those of the edge split) and the new vertex.
-bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, std::array<OpenMesh::FaceHandle, 2>& sides,
-                       OpenMesh::VertexHandle& vertex) {
+bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& centre,
+                       std::array<OpenMesh::FaceHandle, 2>& sides, OpenMesh::VertexHandle& vertex) {
     const std::vector<OpenMesh::EdgeHandle> edges = edges_longest_first(g, f);
     auto split = [&](OpenMesh::EdgeHandle e, std::size_t crossing) {
         const CoarseMesh& coarse = g.coarse();
@@ -89,7 +89,11 @@ bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, std::ar
         if (const std::size_t crossing = crease_crossing(g, e); crossing > 0 && split(e, crossing)) return true;
     for (OpenMesh::EdgeHandle e : edges)
         if (split(e, 0)) return true;
-    return false;
+    // Where no edge can be split (their new geodesics would leave the patches), the face itself, at its centre.
+    sides = {f, OpenMesh::FaceHandle()};
+    const SplitResult r = split_face(g, f, centre);
+    vertex = r.vertex;
+    return r.done;
 }
 
 }  // namespace
@@ -124,7 +128,7 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
             if (changed[static_cast<std::size_t>(f.idx())]) continue;
             std::array<OpenMesh::FaceHandle, 2> sides;
             OpenMesh::VertexHandle vertex;
-            if (!split_for_curving(g, f, sides, vertex)) continue;
+            if (!split_for_curving(g, f, detail::patch_centre(cache, f), sides, vertex)) continue;
             for (OpenMesh::FaceHandle side : sides)
                 if (side.is_valid() && static_cast<std::size_t>(side.idx()) < changed.size())
                     changed[static_cast<std::size_t>(side.idx())] = 1;

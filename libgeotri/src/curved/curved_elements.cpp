@@ -102,6 +102,7 @@ detail::ElementGeometry make_element(const GeodesicTriangulation& g, const Overl
 
     detail::ElementGeometry made;
     ElementCertificate& certificate = made.certificate;
+    if (const auto centre = map.preimage(Eigen::Vector2d(1.0 / 3.0, 1.0 / 3.0))) made.centre = centre->point;
     const std::vector<Eigen::Vector3d> x = detail::bernstein_from_lagrange(positions, p);
 
     const Eigen::Vector3d& x0 = positions[multi_index_position(0, 0)];

@@ -14,12 +14,14 @@
 
 namespace geotri::detail {
 
-/// What make_element() finds for one face: the interior nodes and their positions, in gmsh's order, and the
-/// certificate.
+/// What make_element() finds for one face: the interior nodes and their positions, in gmsh's order, the
+/// certificate, and the point of T at the centre of the reference triangle (where to split the face when no edge
+/// split can be made).
 struct ElementGeometry {
     std::vector<SurfacePoint> interior;
     std::vector<Eigen::Vector3d> interior_positions;
     ElementCertificate certificate;
+    SurfacePoint centre;
 };
 
 /// One face's element with what it was made from: the corners' vertex indices and the sides' paths, from
@@ -40,5 +42,11 @@ struct ElementCache {
 /// `cache`. The result is the same as curve_elements() without a cache. The cache holds for one T and one set of
 /// options.
 CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& options, ElementCache& cache);
+
+/// The centre of face f's patch (ElementGeometry::centre) as the last curve_elements() with `cache` found it.
+/// Precondition: that call made or kept f's element.
+inline const SurfacePoint& patch_centre(const ElementCache& cache, OpenMesh::FaceHandle f) {
+    return cache.by_face[static_cast<std::size_t>(f.idx())]->geometry.centre;
+}
 
 }  // namespace geotri::detail
