@@ -45,13 +45,13 @@ gN.off, gN.paths, gN.gtri, gN.flip.gtri and gN.pP.msh, N the target face count).
 """
 import argparse
 import contextlib
-import json
 import math
 import pathlib
-import subprocess
 import sys
 import tempfile
 import time
+
+import geotri_tools
 
 import numpy as np
 
@@ -65,27 +65,8 @@ AT_FLOOR = 3.0
 SAMPLES = 40  # the measured distance samples each element on a lattice of (SAMPLES + 1)(SAMPLES + 2) / 2 points
 
 
-def tool_path(build, tool):
-    """geotri-TOOL in a build folder (its tools/ subfolder) or in a folder that holds the tools themselves."""
-    nested = build / "tools" / f"geotri-{tool}"
-    return nested if nested.exists() else build / f"geotri-{tool}"
-
-
 def run(tool, args, build):
-    """Runs geotri-TOOL with --json --quiet; returns (exit code, parsed JSON or None, wall seconds, stderr). A run
-    that takes longer than TIMEOUT is stopped: no JSON, and stderr says so."""
-    start = time.perf_counter()
-    try:
-        done = subprocess.run([str(tool_path(build, tool)), "--json", "--quiet", *args],
-                              capture_output=True, text=True, timeout=TIMEOUT)
-    except subprocess.TimeoutExpired:
-        return None, None, time.perf_counter() - start, f"stopped after {TIMEOUT:.0f} s"
-    seconds = time.perf_counter() - start
-    try:
-        summary = json.loads(done.stdout) if done.stdout.strip() else None
-    except json.JSONDecodeError:
-        summary = None
-    return done.returncode, summary, seconds, done.stderr.strip()
+    return geotri_tools.run(tool, args, build, TIMEOUT)
 
 
 def icosphere(subdivisions):
@@ -272,7 +253,7 @@ def main():
                         help="write the outputs to this folder and keep them")
     options = parser.parse_args()
     TIMEOUT = options.timeout
-    if not tool_path(options.build, "curve").exists():
+    if not geotri_tools.tool_path(options.build, "curve").exists():
         sys.exit(f"curve_convergence.py: no geotri-curve in {options.build} or {options.build / 'tools'}")
     k = options.subdivisions if options.subdivisions is not None else default_subdivisions(500_000)
     faces_list = sorted(options.faces)

@@ -44,6 +44,8 @@ import sys
 import tempfile
 import time
 
+import geotri_tools
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 DEFAULT_MESHES = [
@@ -65,27 +67,8 @@ WORKER = "--gmsh-worker"  # how this script calls itself in a child process that
 # The geotri route
 
 
-def tool_path(build, name):
-    """geotri-NAME in --build, or in its tools/ when --build is a build folder."""
-    direct = build / f"geotri-{name}"
-    return direct if direct.exists() else build / "tools" / f"geotri-{name}"
-
-
 def run_tool(name, args, build):
-    """Runs geotri-NAME with --json --quiet; returns (exit code, parsed JSON or None, wall seconds, stderr). A run
-    that takes longer than TIMEOUT is stopped: no JSON, and stderr says so."""
-    start = time.perf_counter()
-    try:
-        done = subprocess.run([str(tool_path(build, name)), "--json", "--quiet", *args],
-                              capture_output=True, text=True, timeout=TIMEOUT)
-    except subprocess.TimeoutExpired:
-        return None, None, time.perf_counter() - start, f"stopped after {TIMEOUT:.0f} s"
-    seconds = time.perf_counter() - start
-    try:
-        summary = json.loads(done.stdout) if done.stdout.strip() else None
-    except json.JSONDecodeError:
-        summary = None
-    return done.returncode, summary, seconds, done.stderr.strip()
+    return geotri_tools.run(name, args, build, TIMEOUT)
 
 
 def last_line(text, fallback):
@@ -518,7 +501,7 @@ def main():
     options.data = options.data.resolve()
     options.build = options.build.resolve()
     TIMEOUT = options.timeout
-    if not tool_path(options.build, "curve").exists():
+    if not geotri_tools.tool_path(options.build, "curve").exists():
         sys.exit(f"curve_vs_gmsh.py: no geotri-curve in {options.build} (give --build)")
     meshes = options.meshes
     if not meshes:

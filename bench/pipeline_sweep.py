@@ -15,12 +15,11 @@ go to a temporary folder that is removed at the end, or with --keep to DIR, wher
 """
 import argparse
 import contextlib
-import json
 import pathlib
-import subprocess
 import sys
 import tempfile
-import time
+
+import geotri_tools
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
@@ -29,20 +28,7 @@ TIMEOUT = 600.0  # seconds per tool run; set by --timeout
 
 
 def run(tool, args, build):
-    """Runs geotri-TOOL with --json --quiet; returns (exit code, parsed JSON or None, wall seconds, stderr). A run
-    that takes longer than TIMEOUT is stopped: no JSON, and stderr says so."""
-    start = time.perf_counter()
-    try:
-        done = subprocess.run([str(build / "tools" / f"geotri-{tool}"), "--json", "--quiet", *args],
-                              capture_output=True, text=True, timeout=TIMEOUT)
-    except subprocess.TimeoutExpired:
-        return None, None, time.perf_counter() - start, f"stopped after {TIMEOUT:.0f} s"
-    seconds = time.perf_counter() - start
-    try:
-        summary = json.loads(done.stdout) if done.stdout.strip() else None
-    except json.JSONDecodeError:
-        summary = None
-    return done.returncode, summary, seconds, done.stderr.strip()
+    return geotri_tools.run(tool, args, build, TIMEOUT)
 
 
 def verdict_of(check):

@@ -586,6 +586,11 @@ def overlay_actor(data):
     mapper.SetInputData(painted)
     mapper.SetScalarModeToUseCellData()
     mapper.SetColorModeToDirectScalars()
+    return painted_actor(mapper)
+
+
+def painted_actor(mapper):
+    """A smooth-shaded actor whose colours come from its mapper's cell data."""
     actor = vtk.vtkActor()
     actor.SetMapper(mapper)
     prop = actor.GetProperty()
@@ -611,14 +616,7 @@ def quality_actor(data):
     mapper.SetLookupTable(table)
     mapper.UseLookupTableScalarRangeOn()
     mapper.ScalarVisibilityOn()
-    actor = vtk.vtkActor()
-    actor.SetMapper(mapper)
-    prop = actor.GetProperty()
-    prop.SetInterpolationToPhong()
-    prop.SetAmbient(0.15)
-    prop.SetDiffuse(0.85)
-    prop.SetSpecular(0.1)
-    return actor
+    return painted_actor(mapper)
 
 
 def curves_actor(data, pixel, args):
