@@ -71,9 +71,9 @@ std::size_t crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHandle
 }
 
 /// Splits failing face f: at the crease crossing of one of its edges (crease_crossing(), longest edge first), or
-/// else at the middle of its longest edge whose split is not refused, or else at `centre`, inside its patch. A smooth element flattens as it shrinks, but
-/// one that straddles a crease of T keeps the crease's angle at every size: only edges of G along the crease, which
-/// vertices of G on it start, take the crease out of its elements. Returns whether a split was made, and if so, the
+/// else at the middle of its longest edge whose split is not refused, or else at `centre`, inside its patch. A
+/// smooth element flattens as it shrinks, but one that straddles a crease of T keeps the crease's angle at every
+/// size: only edges of G along the crease, which vertices of G on it start, take the crease out of its elements. Returns whether a split was made, and if so, the
 /// faces that it changed (those of the edge split) and the new vertex.
 bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& centre,
                        std::array<OpenMesh::FaceHandle, 2>& sides, OpenMesh::VertexHandle& vertex) {
@@ -89,7 +89,9 @@ bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const S
         if (const std::size_t crossing = crease_crossing(g, e); crossing > 0 && split(e, crossing)) return true;
     for (OpenMesh::EdgeHandle e : edges)
         if (split(e, 0)) return true;
-    // Where no edge can be split (their new geodesics would leave the patches), the face itself, at its centre.
+    // Where no edge can be split (their new geodesics would leave the patches), the face itself, at its centre
+    // (unless the patch's map gave none).
+    if (centre.kind == geodesic::PointKind::vertex && centre.vertex < 0) return false;
     sides = {f, OpenMesh::FaceHandle()};
     const SplitResult r = split_face(g, f, centre);
     vertex = r.vertex;
