@@ -290,6 +290,92 @@ TEST(Split, every_split_of_a_traced_vertebra_leaves_g_valid) {
     check_every_split(g, "lumbar vertebra", 3);  // every third: each check builds the overlay
 }
 
+/// Whether p lies on the closed fine face f (at a corner, on a side or inside).
+bool on_closed_face(const geodesic::Mesh& mesh, int f, const SurfacePoint& p) {
+    const auto& corners = mesh.triangle(f);
+    auto corner = [&](int v) { return std::find(corners.begin(), corners.end(), v) != corners.end(); };
+    switch (p.kind) {
+        case geodesic::PointKind::vertex: return corner(p.vertex);
+        case geodesic::PointKind::edge: return corner(p.edge_v0) && corner(p.edge_v1);
+        case geodesic::PointKind::face: return p.face == f;
+    }
+    return false;
+}
+
+TEST(Split, a_face_split_beside_a_geodesic_that_passes_a_vertex_of_t_a_hair_away_leaves_g_valid) {
+    // A geodesic traced through a vertex v of T can come as two points on the edges of a fine face F at v, a hair
+    // (1e-16 of the edge) from v, with a chord of F between them: validate() takes them for v. A face split at a
+    // point of F then leads geodesics out of F beside that chord. Its local checks passed it, and the overlay cut
+    // F's chord of no length as if it met every other chord of F, so that the patches about it were no disks. On
+    // the bundled joint (a CAD part whose geodesics run along its creases through vertices of T), every vertex of
+    // a polyline so moved, where G stays valid, and the face split at the middle of F's largest overlay triangle.
+    GeodesicTriangulation g =
+        test::traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", "cad/joint.off", false);
+    untangle_and_flip(g);
+    ASSERT_TRUE(validate(g).valid) << describe(validate(g));
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    auto hair_from = [](int v, int other) {
+        // As canonical() keeps it: t from the end of smaller index.
+        return v < other ? SurfacePoint::on_edge(v, other, 1e-16) : SurfacePoint::on_edge(other, v, std::nextafter(1.0, 0.0));
+    };
+    int moved = 0, split = 0;
+    for (auto e : g.coarse().edges()) {
+        const Polyline line = g.polyline(e);
+        for (std::size_t i = 1; i + 1 < line.size() && split < 12; ++i) {
+            if (line[i].kind != geodesic::PointKind::vertex) continue;
+            const int v = line[i].vertex;
+            for (int h : mesh.outgoing_halfedges(v)) {
+                // F = (v, x, y); the faces across its sides at v must hold the points before and after v.
+                const int x = mesh.head(h), y = mesh.tail(geodesic::Mesh::prev(h));
+                const int across_x = mesh.twin(h), across_y = mesh.twin(geodesic::Mesh::prev(h));
+                if (across_x < 0 || across_y < 0) continue;
+                const int f = geodesic::Mesh::face_of(h);
+                const bool forward = on_closed_face(mesh, geodesic::Mesh::face_of(across_x), line[i - 1]) &&
+                                     on_closed_face(mesh, geodesic::Mesh::face_of(across_y), line[i + 1]);
+                const bool backward = on_closed_face(mesh, geodesic::Mesh::face_of(across_y), line[i - 1]) &&
+                                      on_closed_face(mesh, geodesic::Mesh::face_of(across_x), line[i + 1]);
+                if (!forward && !backward) continue;
+                Polyline hugging(line.begin(), line.begin() + static_cast<std::ptrdiff_t>(i));
+                hugging.push_back(hair_from(v, forward ? x : y));
+                hugging.push_back(hair_from(v, forward ? y : x));
+                hugging.insert(hugging.end(), line.begin() + static_cast<std::ptrdiff_t>(i) + 1, line.end());
+                GeodesicTriangulation moved_g = g;
+                moved_g.set_polyline(e, hugging);
+                if (!validate(moved_g).valid) continue;  // another geodesic passes v too
+                ++moved;
+                const Overlay overlay = build_overlay(moved_g);
+                int largest = -1;
+                double largest_area = 0.0;
+                for (std::size_t t = 0; t < overlay.triangles.size(); ++t) {
+                    if (overlay.fine_face[t] != f || overlay.patch[t] < 0) continue;
+                    const auto& tri = overlay.triangles[t];
+                    const double area = (overlay.positions[tri[1]] - overlay.positions[tri[0]])
+                                            .cross(overlay.positions[tri[2]] - overlay.positions[tri[0]])
+                                            .norm();
+                    if (area > largest_area) largest_area = area, largest = static_cast<int>(t);
+                }
+                if (largest < 0) continue;
+                std::array<double, 3> b{0.0, 0.0, 0.0};
+                for (int corner : overlay.triangles[static_cast<std::size_t>(largest)]) {
+                    const auto c = barycentric_in(mesh, f, overlay.points[static_cast<std::size_t>(corner)]);
+                    for (std::size_t k = 0; k < 3; ++k) b[k] += c[k] / 3.0;
+                }
+                const FaceHandle coarse_face(overlay.patch[static_cast<std::size_t>(largest)]);
+                const SplitResult r = split_face(moved_g, coarse_face, mesh.canonical(SurfacePoint::in_face(f, b)));
+                if (!r.done) continue;
+                ++split;
+                SCOPED_TRACE("edge " + std::to_string(e.idx()) + ", vertex " + std::to_string(v) + " of T, face " +
+                             std::to_string(f));
+                expect_valid_with_area(moved_g);
+                break;
+            }
+        }
+    }
+    std::cout << "[ split    ] bundled joint at 320 faces: " << moved << " geodesics moved a hair off a vertex of T, "
+              << split << " face splits beside them\n";
+    EXPECT_GT(split, 0);
+}
+
 /// The anchor (a CAD part of genus 4) decimated to 320 faces and traced: trace leaves forks there, pairs of
 /// geodesics that leave a coarse vertex together and part at a saddle vertex of T.
 GeodesicTriangulation traced_anchor() {

@@ -6,7 +6,7 @@
 #include <geodesic/mesh.h>
 #include <geotri/geodesic_triangulation.h>
 
-#include "check/tolerances.h"
+#include "core/tolerances.h"
 
 #include <Eigen/Core>
 

@@ -1,5 +1,5 @@
 #include "check/local_checks.h"
-#include "check/tolerances.h"
+#include "core/tolerances.h"
 #include "core/plane_segments.h"
 
 #include <geodesic/constants.h>

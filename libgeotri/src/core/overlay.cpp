@@ -5,6 +5,7 @@
 
 #include "core/patch_overlay.h"
 #include "core/plane_segments.h"
+#include "core/tolerances.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -118,6 +119,11 @@ public:
         } catch (const Error&) {
             return -1;
         }
+        // A point a hair from an end of its fine edge is at that vertex, as validate() judges where geodesics meet:
+        // a geodesic traced through a vertex of T can come as two such points on the edges on either side of it,
+        // and the chord between them, of no length once laid out in the face, would meet every chord there.
+        if (p.kind == PointKind::edge && p.t <= detail::k_meet_tolerance) return p.edge_v0;
+        if (p.kind == PointKind::edge && 1.0 - p.t <= detail::k_meet_tolerance) return p.edge_v1;
         if (p.kind == PointKind::vertex) return p.vertex;
         PointKey key;
         int slot = -1;
