@@ -148,7 +148,6 @@ int run(tools::Tool& tool) {
         summary.add("finer_curved_tried", r.finer_curved_tried);
         summary.add("finer_curved_kept", r.finer_curved_kept);
         summary.add("finer_curved_error", r.finer_curved_error);
-        summary.add("whole_checks", r.whole_checks);
         summary.add("longest_edge", r.longest_edge);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);
         summary.add("load_seconds", load_seconds);
@@ -194,10 +193,6 @@ int run(tools::Tool& tool) {
                          r.finer_curved_kept ? "with them" : "before it", r.finer_curved_error);
         if (r.wide_corners_left > 0)
             std::fprintf(stderr, "%s: %d corners above 180 degrees left\n", program, r.wide_corners_left);
-        if (r.whole_checks)
-            std::fprintf(stderr, "%s: a step had left G invalid despite its local checks: refined again from the G "
-                                 "given, checking all of G at every step\n",
-                         program);
         std::fprintf(stderr, "%s: %s; refined in %.3f s\n", program, r.valid_after ? "valid" : "INVALID", r.seconds);
     }
     return r.valid_after ? tools::k_exit_ok : k_exit_invalid;

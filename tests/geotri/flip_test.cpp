@@ -602,8 +602,7 @@ TEST(Untangle, untangling_bisects_the_tangled_edges_where_nothing_else_helps) {
     untangle_and_flip(again, one_thread);
     expect_same_polylines(again, g, "1 thread");
 
-    // Refinement of that G to 25 degrees met a face split that its local checks let through and that left patches
-    // that were not disks; it must still end valid (RefineResult::whole_checks says how).
+    // Refinement of that G to 25 degrees ends valid, each step judged by its local checks alone.
     RefineOptions to_25;
     to_25.min_angle_deg = 25.0;
     GeodesicTriangulation refined = g;
@@ -614,8 +613,7 @@ TEST(Untangle, untangling_bisects_the_tangled_edges_where_nothing_else_helps) {
               << total(r.violations_after) << " violations (" << total(stuck.violations_after)
               << " without bisections), " << r.untangling.bisections << " edges bisected, " << g.coarse().n_faces()
               << " faces, " << r.seconds << " s; refined to " << refined.coarse().n_faces() << " faces, "
-              << refinement.angles_after.min_deg << "°" << (refinement.whole_checks ? ", with whole checks" : "")
-              << "\n";
+              << refinement.angles_after.min_deg << "°\n";
 }
 
 TEST(Untangle, untangling_again_with_the_vertices_of_bisections_kept_mends_fertility_at_its_coarsest) {

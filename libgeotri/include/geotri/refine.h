@@ -2,8 +2,7 @@
 // Refinement of a valid G: longest-edge bisection down to a geodesic edge length or a face count, then
 // Delaunay refinement to a minimum corner angle by inserting geodesic circumcentres, moving vertices within their
 // stars where that mends a corner. Every step is a split or a move whose local checks keep G valid or refuse it
-// (split.h, relocate.h), and flips towards geodesic Delaunay follow each one; where those checks miss and G comes
-// out invalid, refine() starts again with every step checked on all of G (RefineResult::whole_checks).
+// (split.h, relocate.h), and flips towards geodesic Delaunay follow each one.
 
 #include <geotri/flip_to_delaunay.h>
 #include <geotri/geodesic_triangulation.h>
@@ -127,9 +126,6 @@ struct RefineResult {
     bool finer_curved_tried = false, finer_curved_kept = false;
     /// Why refining again with more vertices curved stopped, where it threw NumericalError: what stood before stands.
     std::string finer_curved_error;
-    /// The local checks let through a step that left G invalid: refinement started again from the G given, with
-    /// every step checked on all of G (validate(), the overlay included), and this is that result. Slower.
-    bool whole_checks = false;
     double longest_edge = 0.0;         ///< after
     CornerAngleStats angles_before, angles_after;
     double seconds = 0.0;              ///< both attempts, where there were two

@@ -238,13 +238,11 @@ class Refiner {
 public:
     /// `curved_fraction`: a vertex of T whose cone angle differs from 2π by more than this fraction of the minimum
     /// angle counts as curved.
-    /// `whole_checks`: every step is also checked with validate() on all of G, overlay included, and refused where
-    /// that finds G invalid (the safety net of refine()).
     /// `stop_if_cancelled`, when given, is called after every step, and may throw to end refinement there.
     Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result, double curved_fraction,
-            bool whole_checks, std::function<void()> stop_if_cancelled = {})
+            std::function<void()> stop_if_cancelled = {})
         : g_(g), options_(options), result_(result), propagation_(g.fine().mesh), pool_(g.fine().mesh),
-          stop_if_cancelled_(std::move(stop_if_cancelled)), whole_checks_(whole_checks) {
+          stop_if_cancelled_(std::move(stop_if_cancelled)) {
         const geodesic::Mesh& mesh = g.fine().mesh;
         min_edge_ = options.min_edge_length > 0.0 ? options.min_edge_length
                                                    : k_min_edge_fraction * mean_edge_length(mesh);
@@ -621,8 +619,6 @@ private:
     }
 
 
-    /// Without whole checks, true: the local checks of the operations are what keeps G valid.
-    bool valid_whole(const GeodesicTriangulation& trial) const { return !whole_checks_ || validate(trial).valid; }
 
     /// A copy of G to try an operation on, in the storage of `slot` where it has some: copying G into new storage
     /// for every split and move tried was a third of refinement on a G of thousands of faces (cheese at 25
@@ -679,7 +675,7 @@ private:
             shortest_new = std::min(shortest_new, trial.length(trial.coarse().edge_handle(h)));
         const double changed_bar = std::max(keep_above_, changed_floor);
         if (shortest_new < min_length || smallest_corner_around(trial, done.vertex) < floor ||
-            (changed_bar > 0.0 && corners_in(trial, changed).smallest < changed_bar) || !valid_whole(trial)) {
+            (changed_bar > 0.0 && corners_in(trial, changed).smallest < changed_bar)) {
             ++result_.refused_splits;
             return Tried::refused_shape;
         }
@@ -881,7 +877,7 @@ private:
             double smallest = std::numeric_limits<double>::infinity();
             for (VertexHandle c : done.corners_after) smallest = std::min(smallest, smallest_corner_around(trial, c));
             if (smallest <= done.min_corner_before || smallest < min_angle_ || smallest <= best_corner ||
-                smallest_changed_corner(trial) < keep_above_ || !valid_whole(trial))
+                smallest_changed_corner(trial) < keep_above_)
                 continue;
             best.emplace(std::move(trial));
             best_corner = smallest;
@@ -1034,7 +1030,6 @@ private:
             if (!(after.smallest - before.smallest > k_min_move_gain) || after.smallest < goal.floor) return;
             c.score = after.smallest;
         }
-        if (!valid_whole(trial)) return;
         c.moved = &trial;
         c.changed = std::move(changed);
         c.flips = flips.flips;
@@ -1450,7 +1445,6 @@ private:
     bool inside_splits_ = false;  ///< refine_face() tries split_inside_or_around() too (the last resort)
     double keep_above_ = 0.0;  ///< while raising the minimum angle: the smallest corner when it began (radians)
     int budget_ = 0, new_vertices_ = 0;
-    bool whole_checks_ = false;
     /// The faces of G that changed since raise_min_angle() last looked (indices), or, when renumbered_, any.
     std::vector<int> changed_faces_;
     bool renumbered_ = true;  // nothing is recorded until raise_min_angle() looks
@@ -1470,8 +1464,8 @@ struct Attempt {
 class Attempts {
 public:
     Attempts(const GeodesicTriangulation& given, const RefineResult& given_result, const RefineOptions& options,
-             double curved_fraction, bool whole_checks, bool without_moves, int threads)
-        : given_(given), given_result_(given_result), curved_fraction_(curved_fraction), whole_checks_(whole_checks),
+             double curved_fraction, bool without_moves, int threads)
+        : given_(given), given_result_(given_result), curved_fraction_(curved_fraction),
           progress_(options.progress),
           options_(options_of_attempts(options, without_moves)), results_(options_.size()),
           runner_(options_.size(), threads, [this](std::size_t k) { run(k); }) {}
@@ -1506,7 +1500,7 @@ private:
         attempt.g.emplace(given_);
         attempt.result = given_result_;
         Refiner refiner(*attempt.g, options, attempt.result, k % 2 == 0 ? curved_fraction_ : k_second_curved_fraction,
-                        whole_checks_, [this, k] { runner_.stop_if_cancelled(k); });
+                        [this, k] { runner_.stop_if_cancelled(k); });
         refiner.bisect();
         refiner.raise_min_angle();
         refiner.count_corners_left();
@@ -1515,7 +1509,6 @@ private:
     const GeodesicTriangulation& given_;
     const RefineResult& given_result_;
     const double curved_fraction_;  // that of the attempts with the options' own curved vertices (k even)
-    const bool whole_checks_;
     const std::function<void(const std::string&)>& progress_;  // the caller's own, which refine() reports to too
     std::vector<RefineOptions> options_;  // attempt k's, but for their progress
     std::vector<Attempt> results_;
@@ -1545,7 +1538,7 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
     // its file numbers it, a G flipped in memory refines as geotri-refine refines geotri-flip's output.
     g = renumbered_as_read(g);
 
-    // The G given, for the attempts after the first and for the safety net (a copy shares the polylines).
+    // The G given, for the attempts after the first (a copy shares the polylines).
     const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
     const RefineResult given_result = result;
     const GeodesicTriangulation given = g;
@@ -1619,12 +1612,12 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
                            RefineResult& counts) {
         ValidationReport after;
         {
-            Attempts attempts(given, given_result, with, curved_fraction, false, with.move_vertices, attempt_threads);
+            Attempts attempts(given, given_result, with, curved_fraction, with.move_vertices, attempt_threads);
             after = refine_given(attempts, 0, target, counts);
             // Given up on a few triangles with vertex moves, not cascading into the cap: once more without them,
             // and the better kept. The ways out that refinement has where it is stuck (a longer cap when nearly
             // done, removing the vertices it added) were made for circumcentres alone, and moves can stand in their
-            // way: at 30 degrees, footbones and boxpart reach the angle only without moves. Where more are left,
+            // way: at 30 degrees, footbones reaches the angle only without moves. Where more are left,
             // circumcentres alone left more still on every mesh measured (man, gears and skull_thing74168 at 25
             // degrees, femur_cgal at 30).
             if (with.move_vertices && with.min_angle_deg > 0.0 && after.valid && counts.small_corners_left > 0 &&
@@ -1638,16 +1631,6 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
                     &RefineResult::without_moves_error);
             }
         }  // the attempts not needed stop here
-        // The operations' local checks keep a valid G valid, but not always: at cad/joint.off's coarsest, untangled
-        // with bisections, a face split whose geodesics passed them left patches that were not disks. Where the
-        // result is invalid, refinement starts again from the G given, every step then also checked on all of G.
-        if (!after.valid) {
-            if (options.progress)
-                options.progress("the result was not valid: starting again, checking all of G each step");
-            Attempts attempts(given, given_result, with, curved_fraction, true, false, 1);
-            after = refine_given(attempts, 0, target, counts);
-            counts.whole_checks = true;
-        }
         return after;
     };
     ValidationReport after = refine_with(options, k_curved_fraction, g, result);
