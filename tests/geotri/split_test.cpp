@@ -171,13 +171,13 @@ TEST(Split, face_split_at_a_point_outside_the_patch_is_refused_and_g_is_unchange
     EXPECT_THROW(split_face(g, f, SurfacePoint::at_vertex(v), {}, without), InvalidInput);
 }
 
-/// A point strictly inside the patch of f: the centroid of its largest overlay triangle.
-SurfacePoint inside_patch(const GeodesicTriangulation& g, const Overlay& overlay, int f) {
-    const auto& mesh = g.fine().mesh;
+/// The largest overlay triangle for which keep(t) holds, or -1 where there is none.
+template <class Keep>
+int largest_triangle(const Overlay& overlay, Keep keep) {
     int best = -1;
     double best_area = 0.0;
     for (std::size_t t = 0; t < overlay.triangles.size(); ++t) {
-        if (overlay.patch[t] != f) continue;
+        if (!keep(t)) continue;
         const auto& tri = overlay.triangles[t];
         const double area = (overlay.positions[tri[1]] - overlay.positions[tri[0]])
                                 .cross(overlay.positions[tri[2]] - overlay.positions[tri[0]])
@@ -187,13 +187,24 @@ SurfacePoint inside_patch(const GeodesicTriangulation& g, const Overlay& overlay
             best = static_cast<int>(t);
         }
     }
-    const int fine_face = overlay.fine_face[static_cast<std::size_t>(best)];
+    return best;
+}
+
+/// The centroid of overlay triangle t, as a point of T.
+SurfacePoint centroid_of(const GeodesicTriangulation& g, const Overlay& overlay, int t) {
+    const auto& mesh = g.fine().mesh;
+    const int fine_face = overlay.fine_face[static_cast<std::size_t>(t)];
     std::array<double, 3> b{0.0, 0.0, 0.0};
-    for (int corner : overlay.triangles[static_cast<std::size_t>(best)]) {
+    for (int corner : overlay.triangles[static_cast<std::size_t>(t)]) {
         const auto c = barycentric_in(mesh, fine_face, overlay.points[static_cast<std::size_t>(corner)]);
         for (std::size_t k = 0; k < 3; ++k) b[k] += c[k] / 3.0;
     }
     return mesh.canonical(SurfacePoint::in_face(fine_face, b));
+}
+
+/// A point strictly inside the patch of f: the centroid of its largest overlay triangle.
+SurfacePoint inside_patch(const GeodesicTriangulation& g, const Overlay& overlay, int f) {
+    return centroid_of(g, overlay, largest_triangle(overlay, [&](std::size_t t) { return overlay.patch[t] == f; }));
 }
 
 /// Splits every `stride`-th edge at its midpoint and every `stride`-th face inside its patch, each on its own copy
@@ -305,10 +316,11 @@ bool on_closed_face(const geodesic::Mesh& mesh, int f, const SurfacePoint& p) {
 TEST(Split, a_face_split_beside_a_geodesic_that_passes_a_vertex_of_t_a_hair_away_leaves_g_valid) {
     // A geodesic traced through a vertex v of T can come as two points on the edges of a fine face F at v, a hair
     // (1e-16 of the edge) from v, with a chord of F between them: validate() takes them for v. A face split at a
-    // point of F then leads geodesics out of F beside that chord. Its local checks passed it, and the overlay cut
-    // F's chord of no length as if it met every other chord of F, so that the patches about it were no disks. On
-    // the bundled joint (a CAD part whose geodesics run along its creases through vertices of T), every vertex of
-    // a polyline so moved, where G stays valid, and the face split at the middle of F's largest overlay triangle.
+    // point of F leads geodesics out of F beside that chord, and its local checks pass it. The overlay must cut the
+    // chord at v as well: laid out as a chord of no length, it would meet every other chord of F and leave the
+    // patches about it no disks. On the bundled joint (a CAD part whose geodesics run along its creases through
+    // vertices of T), vertices of polylines so moved, where G stays valid, each with the face split at the middle of
+    // F's largest overlay triangle.
     GeodesicTriangulation g =
         test::traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", "cad/joint.off", false);
     untangle_and_flip(g);
@@ -316,7 +328,8 @@ TEST(Split, a_face_split_beside_a_geodesic_that_passes_a_vertex_of_t_a_hair_away
     const geodesic::Mesh& mesh = g.fine().mesh;
     auto hair_from = [](int v, int other) {
         // As canonical() keeps it: t from the end of smaller index.
-        return v < other ? SurfacePoint::on_edge(v, other, 1e-16) : SurfacePoint::on_edge(other, v, std::nextafter(1.0, 0.0));
+        return v < other ? SurfacePoint::on_edge(v, other, 1e-16)
+                         : SurfacePoint::on_edge(other, v, std::nextafter(1.0, 0.0));
     };
     int moved = 0, split = 0;
     for (auto e : g.coarse().edges()) {
@@ -344,24 +357,11 @@ TEST(Split, a_face_split_beside_a_geodesic_that_passes_a_vertex_of_t_a_hair_away
                 if (!validate(moved_g).valid) continue;  // another geodesic passes v too
                 ++moved;
                 const Overlay overlay = build_overlay(moved_g);
-                int largest = -1;
-                double largest_area = 0.0;
-                for (std::size_t t = 0; t < overlay.triangles.size(); ++t) {
-                    if (overlay.fine_face[t] != f || overlay.patch[t] < 0) continue;
-                    const auto& tri = overlay.triangles[t];
-                    const double area = (overlay.positions[tri[1]] - overlay.positions[tri[0]])
-                                            .cross(overlay.positions[tri[2]] - overlay.positions[tri[0]])
-                                            .norm();
-                    if (area > largest_area) largest_area = area, largest = static_cast<int>(t);
-                }
+                const int largest = largest_triangle(
+                    overlay, [&](std::size_t t) { return overlay.fine_face[t] == f && overlay.patch[t] >= 0; });
                 if (largest < 0) continue;
-                std::array<double, 3> b{0.0, 0.0, 0.0};
-                for (int corner : overlay.triangles[static_cast<std::size_t>(largest)]) {
-                    const auto c = barycentric_in(mesh, f, overlay.points[static_cast<std::size_t>(corner)]);
-                    for (std::size_t k = 0; k < 3; ++k) b[k] += c[k] / 3.0;
-                }
                 const FaceHandle coarse_face(overlay.patch[static_cast<std::size_t>(largest)]);
-                const SplitResult r = split_face(moved_g, coarse_face, mesh.canonical(SurfacePoint::in_face(f, b)));
+                const SplitResult r = split_face(moved_g, coarse_face, centroid_of(moved_g, overlay, largest));
                 if (!r.done) continue;
                 ++split;
                 SCOPED_TRACE("edge " + std::to_string(e.idx()) + ", vertex " + std::to_string(v) + " of T, face " +
