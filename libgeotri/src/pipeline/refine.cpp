@@ -618,8 +618,6 @@ private:
         return options;
     }
 
-
-
     /// A copy of G to try an operation on, in the storage of `slot` where it has some: copying G into new storage
     /// for every split and move tried was a third of refinement on a G of thousands of faces (cheese at 25
     /// degrees: PropertyT::clone(), malloc() and free()). Not copied at all where the slot still holds this G
