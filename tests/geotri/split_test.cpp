@@ -313,6 +313,26 @@ bool on_closed_face(const geodesic::Mesh& mesh, int f, const SurfacePoint& p) {
     return false;
 }
 
+/// `line` with its point i, at vertex v of T, replaced by two points a hair (1e-16 of the edge) from v on the sides
+/// at v of F, the face of halfedge h (leaving v), where the faces across those sides hold the points before and after
+/// v; nothing where they do not.
+std::optional<Polyline> through_the_corner_of(const geodesic::Mesh& mesh, const Polyline& line, std::size_t i, int h) {
+    const int x = mesh.head(h), y = mesh.tail(geodesic::Mesh::prev(h));
+    const int across_x = mesh.twin(h), across_y = mesh.twin(geodesic::Mesh::prev(h));
+    if (across_x < 0 || across_y < 0) return std::nullopt;
+    auto holds = [&](int across, const SurfacePoint& p) {
+        return on_closed_face(mesh, geodesic::Mesh::face_of(across), p);
+    };
+    const bool forward = holds(across_x, line[i - 1]) && holds(across_y, line[i + 1]);
+    if (!forward && !(holds(across_y, line[i - 1]) && holds(across_x, line[i + 1]))) return std::nullopt;
+    const int v = line[i].vertex;
+    Polyline hugging(line.begin(), line.begin() + static_cast<std::ptrdiff_t>(i));
+    hugging.push_back(SurfacePoint::on_edge(v, forward ? x : y, 1e-16));
+    hugging.push_back(SurfacePoint::on_edge(v, forward ? y : x, 1e-16));
+    hugging.insert(hugging.end(), line.begin() + static_cast<std::ptrdiff_t>(i) + 1, line.end());
+    return hugging;
+}
+
 TEST(Split, a_face_split_beside_a_geodesic_that_passes_a_vertex_of_t_a_hair_away_leaves_g_valid) {
     // A geodesic traced through a vertex v of T can come as two points on the edges of a fine face F at v, a hair
     // (1e-16 of the edge) from v, with a chord of F between them: validate() takes them for v. A face split at a
@@ -326,46 +346,28 @@ TEST(Split, a_face_split_beside_a_geodesic_that_passes_a_vertex_of_t_a_hair_away
     untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     const geodesic::Mesh& mesh = g.fine().mesh;
-    auto hair_from = [](int v, int other) {
-        // As canonical() keeps it: t from the end of smaller index.
-        return v < other ? SurfacePoint::on_edge(v, other, 1e-16)
-                         : SurfacePoint::on_edge(other, v, std::nextafter(1.0, 0.0));
-    };
     int moved = 0, split = 0;
     for (auto e : g.coarse().edges()) {
         const Polyline line = g.polyline(e);
         for (std::size_t i = 1; i + 1 < line.size() && split < 12; ++i) {
             if (line[i].kind != geodesic::PointKind::vertex) continue;
-            const int v = line[i].vertex;
-            for (int h : mesh.outgoing_halfedges(v)) {
-                // F = (v, x, y); the faces across its sides at v must hold the points before and after v.
-                const int x = mesh.head(h), y = mesh.tail(geodesic::Mesh::prev(h));
-                const int across_x = mesh.twin(h), across_y = mesh.twin(geodesic::Mesh::prev(h));
-                if (across_x < 0 || across_y < 0) continue;
-                const int f = geodesic::Mesh::face_of(h);
-                const bool forward = on_closed_face(mesh, geodesic::Mesh::face_of(across_x), line[i - 1]) &&
-                                     on_closed_face(mesh, geodesic::Mesh::face_of(across_y), line[i + 1]);
-                const bool backward = on_closed_face(mesh, geodesic::Mesh::face_of(across_y), line[i - 1]) &&
-                                      on_closed_face(mesh, geodesic::Mesh::face_of(across_x), line[i + 1]);
-                if (!forward && !backward) continue;
-                Polyline hugging(line.begin(), line.begin() + static_cast<std::ptrdiff_t>(i));
-                hugging.push_back(hair_from(v, forward ? x : y));
-                hugging.push_back(hair_from(v, forward ? y : x));
-                hugging.insert(hugging.end(), line.begin() + static_cast<std::ptrdiff_t>(i) + 1, line.end());
+            for (int h : mesh.outgoing_halfedges(line[i].vertex)) {
+                const std::optional<Polyline> hugging = through_the_corner_of(mesh, line, i, h);
+                if (!hugging) continue;
                 GeodesicTriangulation moved_g = g;
-                moved_g.set_polyline(e, hugging);
-                if (!validate(moved_g).valid) continue;  // another geodesic passes v too
+                moved_g.set_polyline(e, *hugging);  // canonical: t from the end of smaller index
+                if (!validate(moved_g).valid) continue;  // another geodesic passes the vertex too
                 ++moved;
+                const int f = geodesic::Mesh::face_of(h);
                 const Overlay overlay = build_overlay(moved_g);
                 const int largest = largest_triangle(
                     overlay, [&](std::size_t t) { return overlay.fine_face[t] == f && overlay.patch[t] >= 0; });
                 if (largest < 0) continue;
                 const FaceHandle coarse_face(overlay.patch[static_cast<std::size_t>(largest)]);
-                const SplitResult r = split_face(moved_g, coarse_face, centroid_of(moved_g, overlay, largest));
-                if (!r.done) continue;
+                if (!split_face(moved_g, coarse_face, centroid_of(moved_g, overlay, largest)).done) continue;
                 ++split;
-                SCOPED_TRACE("edge " + std::to_string(e.idx()) + ", vertex " + std::to_string(v) + " of T, face " +
-                             std::to_string(f));
+                SCOPED_TRACE("edge " + std::to_string(e.idx()) + ", vertex " + std::to_string(line[i].vertex) +
+                             " of T, face " + std::to_string(f));
                 expect_valid_with_area(moved_g);
                 break;
             }
