@@ -1,6 +1,7 @@
-// Untangling's memory of the flips that failed (libgeotri/src/pipeline/stale_trials.h): a failure stays known until a change
-// touches one of the fine faces that its trial read. Whether that is enough, that a flip changes the count alike
-// wherever G changed elsewhere, is checked against validate() in violation_count_test.cpp.
+// Untangling's memory of the flips and vertex moves that failed (libgeotri/src/pipeline/stale_trials.h): a failure
+// stays known until a change touches one of the fine faces that its trial read. Whether that is enough, that such a
+// move changes the count alike wherever G changed elsewhere, is checked against validate() in
+// violation_count_test.cpp.
 
 #include <geodesic/exact_geodesic.h>
 #include <geotri/flip.h>

@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <iostream>
 #include <iterator>
 #include <memory>
@@ -225,38 +226,40 @@ TEST(ViolationCount, trials_on_a_tangled_real_mesh_count_as_validate) {
     EXPECT_GT(check_random_trials(g, 300, 10, 3, "anchor"), 0);
 }
 
-TEST(ViolationCount, a_flip_changes_the_count_alike_after_a_change_on_other_fine_faces) {
-    // What StaleTrials relies on: a trial's change of the count depends only on what lies on the fine faces that
-    // it reads (StaleTrials::changed_faces()). A flip is tried on G, and again on G changed nearby (at an edge or
-    // vertex within two rings of the flip's quad) by a random change of any kind that keeps the numbering (not a
-    // collapse); where the two touch no common fine face, the flip must change the count by as much on both.
-    // Oracle: validate().
-    const auto fine =
-        std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off"));
-    GeodesicTriangulation g(fine, decimated_coarse(*fine, 320));
-    trace(g);
+/// A move that untangling may skip where it failed before (StaleTrials): its name, the coarse vertices that it acts
+/// at, and the move itself, to be done on G or a copy changed elsewhere (false: not possible there).
+struct LocalMove {
+    std::string name;
+    std::vector<VertexHandle> at;
+    std::function<bool(GeodesicTriangulation&)> run;
+};
+
+/// What StaleTrials relies on: a trial's change of the count depends only on what lies on the fine faces that it
+/// reads (StaleTrials::changed_faces()). A move drawn by `draw` is tried on G, and again on G changed nearby (at an
+/// edge or vertex within two rings of where it acts) by a random change of any kind that keeps the numbering (not a
+/// collapse); where the two touch no common fine face, the move must be possible on both and change the count by
+/// as much. Oracle: validate(). Returns the moves compared; `after_a_count_change`, those where the change
+/// elsewhere changed G's count.
+int compare_after_changes_elsewhere(const GeodesicTriangulation& g, std::mt19937& random,
+                                    const std::function<LocalMove(std::mt19937&)>& draw, int& after_a_count_change) {
     const int g_count = validated(g);
-    EXPECT_GT(g_count, 0);
-    std::mt19937 random(11);
     geodesic::ExactGeodesic propagation(g.fine().mesh);
-    FlipOptions unchecked;
-    unchecked.check_validity = false;
-    int compared = 0, changed_count = 0;
+    int compared = 0;
+    after_a_count_change = 0;
     for (int k = 0; k < 2000 && compared < 100; ++k) {
-        const EdgeHandle e(uniform(random, static_cast<int>(g.coarse().n_edges())));
-        GeodesicTriangulation flipped = g;
-        if (!flip(flipped, e, unchecked, propagation_only(propagation)).accepted()) continue;
-        // The vertices within two rings of the quad, and their edges.
+        const LocalMove move = draw(random);
+        GeodesicTriangulation moved = g;
+        if (!move.run(moved)) continue;
+        // The vertices within two rings of where it acts, and their edges.
         std::set<int> near_vertices, near_edges;
-        for (int side = 0; side < 2; ++side)
-            for (VertexHandle c : g.coarse().fv_range(g.coarse().face_handle(g.coarse().halfedge_handle(e, side))))
-                for (VertexHandle n : g.coarse().vv_range(c)) {
-                    near_vertices.insert(n.idx());
-                    for (HalfedgeHandle h : g.coarse().voh_range(n)) {
-                        near_vertices.insert(g.coarse().to_vertex_handle(h).idx());
-                        near_edges.insert(g.coarse().edge_handle(h).idx());
-                    }
+        for (VertexHandle c : move.at)
+            for (VertexHandle n : g.coarse().vv_range(c)) {
+                near_vertices.insert(n.idx());
+                for (HalfedgeHandle h : g.coarse().voh_range(n)) {
+                    near_vertices.insert(g.coarse().to_vertex_handle(h).idx());
+                    near_edges.insert(g.coarse().edge_handle(h).idx());
                 }
+            }
         auto any_of_set = [&](const std::set<int>& from) {
             return *std::next(from.begin(), uniform(random, static_cast<int>(from.size())));
         };
@@ -266,23 +269,85 @@ TEST(ViolationCount, a_flip_changes_the_count_alike_after_a_change_on_other_fine
         GeodesicTriangulation elsewhere = g;
         const std::string change = random_change(elsewhere, random, propagation, near_edge, near_vertex);
         if (change.empty() || change == "collapse") continue;
-        const std::vector<int> read = detail::StaleTrials::changed_faces(g, flipped);
+        const std::vector<int> read = detail::StaleTrials::changed_faces(g, moved);
         const std::vector<int> other = detail::StaleTrials::changed_faces(g, elsewhere);
         std::vector<int> common;
         std::set_intersection(read.begin(), read.end(), other.begin(), other.end(), std::back_inserter(common));
         if (!common.empty()) continue;
         GeodesicTriangulation both = elsewhere;
-        ASSERT_TRUE(flip(both, e, unchecked).accepted()) << "trial " << k << " (" << change << ")";
+        EXPECT_TRUE(move.run(both)) << "trial " << k << ": " << move.name << " after " << change;
         const int elsewhere_count = validated(elsewhere);
-        EXPECT_EQ(validated(both) - elsewhere_count, validated(flipped) - g_count)
-            << "trial " << k << ": flip of coarse edge " << e.idx() << " after " << change;
-        changed_count += elsewhere_count != g_count;
+        EXPECT_EQ(validated(both) - elsewhere_count, validated(moved) - g_count)
+            << "trial " << k << ": " << move.name << " after " << change;
+        after_a_count_change += elsewhere_count != g_count;
         ++compared;
     }
+    return compared;
+}
+
+/// The bundled anchor at 320 faces, traced: tangled, with violations of conditions 1-3.
+GeodesicTriangulation traced_anchor() {
+    const auto fine =
+        std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off"));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, 320));
+    trace(g);
+    return g;
+}
+
+TEST(ViolationCount, a_flip_changes_the_count_alike_after_a_change_on_other_fine_faces) {
+    const GeodesicTriangulation g = traced_anchor();
+    EXPECT_GT(validated(g), 0);
+    std::mt19937 random(11);
+    geodesic::ExactGeodesic propagation(g.fine().mesh);
+    auto draw = [&](std::mt19937& r) {
+        const EdgeHandle e(uniform(r, static_cast<int>(g.coarse().n_edges())));
+        std::vector<VertexHandle> quad;
+        for (int side = 0; side < 2; ++side)
+            for (VertexHandle c : g.coarse().fv_range(g.coarse().face_handle(g.coarse().halfedge_handle(e, side))))
+                quad.push_back(c);
+        return LocalMove{"flip of coarse edge " + std::to_string(e.idx()), quad, [&, e](GeodesicTriangulation& t) {
+                             FlipOptions unchecked;
+                             unchecked.check_validity = false;
+                             return flip(t, e, unchecked, propagation_only(propagation)).accepted();
+                         }};
+    };
+    int changed_count = 0;
+    const int compared = compare_after_changes_elsewhere(g, random, draw, changed_count);
     std::cout << "[ locality ] anchor: " << compared << " flips compared, " << changed_count
               << " after a change that changed G's count\n";
     EXPECT_GE(compared, 50);
     EXPECT_GT(changed_count, 0);  // the changes elsewhere did change what is counted
+}
+
+TEST(ViolationCount, a_vertex_move_changes_the_count_alike_after_a_change_on_other_fine_faces) {
+    // Untangling's moves of a vertex to a vertex of T nearby, within two rings or further.
+    const GeodesicTriangulation g = traced_anchor();
+    std::mt19937 random(12);
+    geodesic::ExactGeodesic propagation(g.fine().mesh);
+    auto draw = [&](std::mt19937& r) {
+        const VertexHandle v(uniform(r, static_cast<int>(g.coarse().n_vertices())));
+        const std::vector<int> near = nearby_fine_vertices(g, v, 1 + uniform(r, 6));
+        const int to = near.empty() ? g.fine().mesh.num_vertices() : near[static_cast<std::size_t>(
+                                                                          uniform(r, static_cast<int>(near.size())))];
+        std::vector<VertexHandle> star{v};  // its edges change, and with them the faces around them
+        for (VertexHandle u : g.coarse().vv_range(v)) star.push_back(u);
+        return LocalMove{"move of coarse vertex " + std::to_string(v.idx()) + " to vertex " + std::to_string(to) +
+                             " of T",
+                         star, [&, v, to](GeodesicTriangulation& t) {
+                             if (to >= t.fine().mesh.num_vertices()) return false;
+                             RelocateOptions unchecked;
+                             unchecked.check_validity = false;
+                             return relocate_vertex(t, v, SurfacePoint::at_vertex(to), unchecked,
+                                                    propagation_only(propagation))
+                                 .done;
+                         }};
+    };
+    int changed_count = 0;
+    const int compared = compare_after_changes_elsewhere(g, random, draw, changed_count);
+    std::cout << "[ locality ] anchor: " << compared << " vertex moves compared, " << changed_count
+              << " after a change that changed G's count\n";
+    EXPECT_GE(compared, 50);
+    EXPECT_GT(changed_count, 0);
 }
 
 TEST(ViolationCount, an_unchanged_copy_counts_as_g) {

@@ -1,10 +1,11 @@
 #pragma once
 // Untangling tries the same moves round after round: a move that failed goes last, but is tried again after every
 // move kept, in case that one changed what it depends on (on cheese, 33205 of 34839 flips tried were such retries).
-// Whether a flip lowers the violations of conditions 1-3 depends only on what lies on the fine faces that it and its
-// geodesics touch: two features meet only on a fine element that they share, and a vertex's corners depend only on
-// the geodesics that leave its location. So a flip that failed fails again as long as no move kept since has
-// changed a feature on one of those faces, and it need not be tried.
+// Whether a flip, or a move of a vertex, lowers the violations of conditions 1-3 depends only on what lies on the
+// fine faces that it and its geodesics touch: its geodesics depend only on the locations of their ends, two
+// features meet only on a fine element that they share, and a vertex's corners depend only on the geodesics that
+// leave its location. So such a move that failed fails again as long as no move kept since has changed a feature on
+// one of those faces, and it need not be tried.
 
 #include <geotri/geodesic_triangulation.h>
 

@@ -278,8 +278,9 @@ struct WorkBudget {
 /// Tries untangling moves on copies of G and keeps the first that lowers the violation count.
 class Untangler {
 public:
-    /// `skip_known_failures`: flips known to fail again are not tried (StaleTrials). Not inside a trial that a
-    /// budget of work may bound: a flip not tried spends no work, and the budget would run out elsewhere.
+    /// `skip_known_failures`: flips and vertex moves known to fail again are not tried (StaleTrials). Not inside a
+    /// trial that a budget of work may bound: a move not tried spends no work, and the budget would run out
+    /// elsewhere than where the trial's caller counted it.
     Untangler(GeodesicTriangulation& g, ValidationReport& report, const UntangleOptions& options,
               geodesic::ExactGeodesic* propagation, UntangleResult& result, bool skip_known_failures)
         : g_(g), report_(report), result_(result), skip_known_failures_(skip_known_failures),
@@ -307,14 +308,14 @@ public:
             int operations = 0;
             std::size_t work = 0;  ///< windows that the move's propagations made
             bool better = false;
-            std::vector<int> faces;  ///< a flip that failed: the fine faces that its judgement read (StaleTrials)
+            std::vector<int> faces;  ///< a flip or move that failed: the fine faces that its judgement read
             std::exception_ptr error;
         };
-        // Without a budget, while conditions 1-3 fail, a flip that failed before is known to fail again where
+        // While conditions 1-3 fail, a flip or a vertex move that failed before is known to fail again where
         // nothing that it read has changed (StaleTrials): conditions 1-3 are counted from what a trial changes,
-        // and a trial is better when that count drops. With no such violations left, condition 4 decides, which
-        // all of G takes part in.
-        const bool known_failures = skip_known_failures_ && !budget && cheap_count(report_) > 0;
+        // and a trial is better when that count drops. Both are one operation whose geodesics depend only on the
+        // locations of their ends. With no such violations left, condition 4 decides, which all of G takes part in.
+        const bool known_failures = skip_known_failures_ && cheap_count(report_) > 0;
         const CountViolations count_trial = [this](const GeodesicTriangulation& trial) {
             return count_->count(trial, verdicts_);
         };
@@ -338,8 +339,8 @@ public:
                 if (k > last) continue;
             }
             Trial& t = trials[k];
-            const bool flip_move = known_failures && moves[k].key[0] == k_flip;
-            if (const std::optional<int> known = flip_move ? stale_.known_failure(moves[k].key) : std::nullopt) {
+            const bool local_move = known_failures && (moves[k].key[0] == k_flip || moves[k].key[0] == k_relocate);
+            if (const std::optional<int> known = local_move ? stale_.known_failure(moves[k].key) : std::nullopt) {
                 t.operations = *known;  // it failed before, and nothing that it read has changed since
             } else {
                 try {
@@ -355,7 +356,7 @@ public:
                     t.better = t.operations > 0 &&
                                lowers_violations(trial, report_, verdicts_, *count_, t.cheap, t.report);
                     if (t.better) t.g.emplace(std::move(trial));  // takes the coarse mesh along
-                    else if (flip_move && t.operations > 0) t.faces = detail::StaleTrials::changed_faces(g_, trial);
+                    else if (local_move && t.operations > 0) t.faces = detail::StaleTrials::changed_faces(g_, trial);
                 } catch (...) {
                     t.error = std::current_exception();
                 }
