@@ -54,9 +54,10 @@ int run(tools::Tool& tool) {
         app.add_option("--thorough", thorough,
                        "Where untangling is stuck with few violations left, 1: also try each edge collapse\n"
                        "there, judged after untangling what it leaves; 2: then with that untangling ending\n"
-                       "with such collapses too; 0: neither. Default: 2, until they have made 10^8 windows of\n"
-                       "propagation (21-28 s on 2 cores; the same result on any machine). Given, they go\n"
-                       "on to the end, which can take minutes where they mend nothing")
+                       "with such collapses too; 0: neither. Default: 2, until these and the other last\n"
+                       "resorts (pairs of flips, wider vertex moves) have made 10^8 windows of propagation\n"
+                       "(7-28 s on 2 cores; the same result on any machine). Given, they go on to the end,\n"
+                       "which can take minutes where they mend nothing")
             ->check(CLI::Range(0, 2));
     int bisection_rounds = geotri::UntangleOptions{}.bisection_rounds;
     app.add_option("--bisection-rounds", bisection_rounds,

@@ -21,9 +21,10 @@ struct UntangleOptions {
     /// that inner untangling end with such collapses too. 0: neither. They can mend a G at its coarsest that nothing
     /// else mends, and can cost minutes where they mend nothing, unless thorough_budget bounds them.
     int thorough = 2;
-    /// The work that those collapses may do, in windows of propagation (geodesic::ExactGeodesic::
-    /// windows_created_total(), the same on any machine and for any thread count), checked between trials: once
-    /// spent, untangling stops with what it has (UntangleResult::thorough_budget_spent). 0: no bound.
+    /// The work that the last resorts (pairs of flips, moves of a vertex further away, and those collapses) may do
+    /// together, in windows of propagation (geodesic::ExactGeodesic::windows_created_total(), the same on any
+    /// machine and for any thread count), checked between trials: once spent, untangling goes on without them
+    /// (UntangleResult::thorough_budget_spent). 0: no bound.
     std::size_t thorough_budget = 100'000'000;
     /// Where untangling is still stuck, every edge that a violation names is bisected at the middle of its
     /// polyline, whatever that does to the count, and untangling goes on: at most this many rounds. Where G is
@@ -57,8 +58,8 @@ struct UntangleResult {
     int refused = 0;    ///< moves not possible there (not flippable, no geodesic, a refused split, ...)
     bool stuck = false; ///< it ended with violations left and no move that lowers their count
     bool last_resorts_tried = false;     ///< few enough violations were left to try the last resorts
-    bool thorough_budget_spent = false;  ///< it stopped because UntangleOptions::thorough_budget was spent
-    std::size_t thorough_windows = 0;    ///< the work of the collapses judged after untangling, as the budget counts
+    bool thorough_budget_spent = false;  ///< the last resorts stopped at UntangleOptions::thorough_budget
+    std::size_t thorough_windows = 0;    ///< the work of the last resorts, as the budget counts
     double seconds = 0.0;
 };
 

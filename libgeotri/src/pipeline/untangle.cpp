@@ -618,10 +618,24 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
             }
         return untangler.keep_first_better(moves, result.collapses);
     };
+    // The last resorts search wider than the moves before them, and where they mend nothing they cost the more the
+    // finer T is around G's vertices: on a CAD part whose flat faces are fans of needles, six rings of T around a
+    // vertex hold a thousand vertices of T, and moving 20 vertices to each of them cost z_bottom_cover at 320
+    // faces 2.0G windows (146 s) that mended nothing, where the bisections after them did in 0.7 s. So all of them
+    // together, in the order tried, make at most options.thorough_budget windows of propagation.
+    WorkBudget budget{options.thorough_budget};
+    // Whether some of the budget is left; says so in the result where none is.
+    auto budget_left = [&] {
+        if (!budget.spent_all()) return true;
+        result.thorough_budget_spent = true;
+        return false;
+    };
     // A coarse vertex on the wrong side of a thin wall or a small handle has geodesics that wind around it twice,
     // whatever its edges: moved a little, to a vertex of T nearby, its new geodesics may wind once.
     // `rings` fine edges away at most, and more than `inner`: nearby_fine_vertices() lists the nearest rings first.
-    auto try_relocations = [&](int rings, int inner) {
+    // `last_resort`: the moves spend the last resorts' budget.
+    auto try_relocations = [&](int rings, int inner, bool last_resort) {
+        if (last_resort && !budget_left()) return false;
         std::vector<Move> moves;
         for (int index : candidate_vertices(g.coarse(), named)) {
             const OpenMesh::VertexHandle v(index);
@@ -642,11 +656,12 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
                 moves.push_back({run, {k_relocate, index, to}});
             }
         }
-        return untangler.keep_first_better(moves, result.relocations);
+        return untangler.keep_first_better(moves, result.relocations, last_resort ? &budget : nullptr);
     };
     // Two tangled faces side by side can need two flips where either alone changes nothing that is counted (the
     // other face still tangles the same geodesics): the second flip is of an edge of a face of the first edge.
     auto try_flip_pairs = [&] {
+        if (!budget_left()) return false;
         std::vector<Move> moves;
         const CoarseMesh& coarse = g.coarse();
         for (int index : candidate_edges(coarse, named)) {
@@ -666,19 +681,15 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
                     moves.push_back({run, {k_flip_pair, first.idx(), second.idx()}});
                 }
         }
-        return untangler.keep_first_better(moves, result.flips);
+        return untangler.keep_first_better(moves, result.flips, &budget);
     };
     // A collapse that raises the count can still be the way out (skull_thing74168, anchor_dense and boxpart at
     // their coarsest): each is judged after untangling what it leaves, with moves sought only for the violations
     // around the vertex kept, and without the other last resorts; `nested`, that untangling may itself end with
     // such collapses (femur_cgal at 320 faces). Each trial untangles, so that they cost the more the longer G's
-    // geodesics are (gears at its coarsest: 3-35M windows each): options.thorough_budget bounds them all.
-    WorkBudget budget{options.thorough_budget};
+    // geodesics are (gears at its coarsest: 3-35M windows each).
     auto try_collapse_and_untangle = [&](bool nested) {
-        if (budget.spent_all()) {
-            result.thorough_budget_spent = true;
-            return false;
-        }
+        if (!budget_left()) return false;
         std::vector<Move> moves;
         for (int index : candidate_vertices(g.coarse(), named))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) {
@@ -713,7 +724,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
         if (focus) return options.thorough >= 1 && try_collapse_and_untangle(false);
         if (cheap_count(report) > k_max_last_resort_violations) return false;
         result.last_resorts_tried = true;
-        return try_flip_pairs() || try_relocations(k_wide_relocation_rings, k_relocation_rings) ||
+        return try_flip_pairs() || try_relocations(k_wide_relocation_rings, k_relocation_rings, true) ||
                (options.thorough >= 1 && try_collapse_and_untangle(false)) ||
                (options.thorough >= 2 && try_collapse_and_untangle(true));
     };
@@ -773,7 +784,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
         // (femur_cgal: 59M windows, 22 s; without them 13M, 6.7 s) and mended nothing more; nesting collapses is
         // what level 2 does.
         if (!try_flips() && !try_fork_splits() && !try_fork_chain() && !try_meeting_splits() &&
-            (focus || !try_collapses()) && !try_relocations(k_relocation_rings, 0) && !try_last_resorts() &&
+            (focus || !try_collapses()) && !try_relocations(k_relocation_rings, 0, false) && !try_last_resorts() &&
             !bisect_tangled_edges()) {
             result.stuck = true;
             break;
