@@ -22,9 +22,11 @@ using Vec2 = Eigen::Vector2d;
 
 namespace {
 
-// A window that ends within this fraction of an edge's length from a vertex also gives that vertex its distance.
-// The ray to the vertex then misses the window by at most that much, which changes the length only to second
-// order (~1e-18 relative). It closes the gaps that rounding leaves where a ray runs exactly through a vertex.
+// A window that ends within this fraction of an edge's length from a vertex also gives that vertex its distance;
+// the apex of the face that it crosses, within this fraction of the edge's length plus its source's distance, since
+// that ray is computed from the source. The ray to the vertex then misses the window by at most that much, which
+// changes the length only to second order (~1e-18 relative). It closes the gaps that rounding leaves where a ray
+// runs exactly through a vertex.
 constexpr double k_cover = 1e-12;
 // A window is dropped only when a vertex beats it by more than this relative margin, so that ties are kept.
 constexpr double k_margin = 1e-12;
@@ -756,7 +758,12 @@ void ExactGeodesic::Impl::propagate_window(int popped, bool may_merge, const Fac
     // The ray from S through the apex crosses the edge at x_apex: rays left of it reach the edge tail→apex, rays
     // right of it the edge apex→head.
     const double x_apex = sx + (ax - sx) * (-sy) / (ay - sy);
-    const double tolerance = k_cover * length;
+    // x_apex carries the rounding of S, which was unfolded from face to face: it is relative to S's distance, not
+    // to the edge. Where the ray runs exactly through an end vertex and on along an edge, as on a thin cylinder
+    // whose rows of needles line up with a far source, it misses [b0, b1] by more than k_cover times a short edge
+    // (1.3e-14 on an edge of 8.7e-3 with S 4.7 away), and so does the ray beyond that vertex: neither window gave
+    // the apex a distance.
+    const double tolerance = k_cover * (length + std::abs(sx) + std::abs(sy));
     if (x_apex >= b0 - tolerance && x_apex <= b1 + tolerance) {
         const double dx = ax - sx, dy = ay - sy;
         relax_vertex(face.apex_vertex, sigma + std::sqrt(dx * dx + dy * dy), {Via::window, id});

@@ -1,5 +1,6 @@
-// Edge cases: several components, zero-area faces, ties between equal shortest paths, bad sources, and reuse of one
-// propagation object. Boundaries and holes are covered by flat_polygon_test.cpp.
+// Edge cases: several components, zero-area faces, ties between equal shortest paths, rays that run along edges
+// through vertices, bad sources, and reuse of one propagation object. Boundaries and holes are covered by
+// flat_polygon_test.cpp.
 
 #include "check_helpers.h"
 
@@ -7,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <limits>
 
 namespace geotri::test {
@@ -239,6 +243,52 @@ TEST(ExactGeodesicTies, two_sources_at_equal_distance_split_a_flat_strip_in_the_
     const int middle = vertex_at(arrays, {2.0, 0.5, 0.0});
     EXPECT_NEAR(propagation.distance(middle), 2.0, 2e-12);
     EXPECT_EQ(propagation.shortest_path(SurfacePoint::at_vertex(middle)).size() >= 2, true);
+}
+
+// --- Rays along edges -------------------------------------------------------------------------------------------
+
+// A thin open prism of `sides` sides, `rows` rows of quads tall, each quad split along the same diagonal: the
+// needles of a drilled hole in a CAD export. Rays from a vertex of the bottom ring run exactly along the long edges
+// of the rows above it, through their vertices.
+TriangleMesh thin_prism(int sides, int rows, double radius, double row_height) {
+    TriangleMesh mesh;
+    for (int j = 0; j <= rows; ++j)
+        for (int i = 0; i < sides; ++i) {
+            const double angle = 2.0 * M_PI * i / sides;
+            mesh.positions.emplace_back(radius * std::cos(angle), radius * std::sin(angle), j * row_height);
+        }
+    auto at = [&](int i, int j) { return j * sides + i % sides; };
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < sides; ++i) {
+            mesh.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    return mesh;
+}
+
+TEST(ExactGeodesicRaysAlongEdges, every_vertex_of_a_thin_prism_gets_its_unrolled_distance) {
+    // The prism is developable and has no vertex of cone angle above 2π: unrolled around the axis, the distance
+    // between two of its vertices is the straight line in the strip, going round one way or the other. A ray along
+    // a long edge passes through a vertex at every row; the rounding of its far source once made it miss both
+    // windows beside that vertex, and 30 vertices of 1476 got no distance.
+    const int sides = 36, rows = 40;
+    const double radius = 0.05, row_height = 0.187;
+    const TriangleMesh arrays = thin_prism(sides, rows, radius, row_height);
+    const geodesic::Mesh mesh = arrays.to_mesh();
+    const double side = 2.0 * radius * std::sin(M_PI / sides);
+    ExactGeodesic propagation(mesh);
+    for (int source = 0; source < sides; ++source) {
+        propagation.propagate({SurfacePoint::at_vertex(source)});
+        FailureLog log("thin prism, source v:" + std::to_string(source));
+        for (int v = 0; v < mesh.num_vertices(); ++v) {
+            const int around = std::abs(v % sides - source);
+            const double unrolled = std::hypot(std::min(around, sides - around) * side, (v / sides) * row_height);
+            if (!near_relative(propagation.distance(v), unrolled, 1e-12, row_height))
+                log.add("v:" + std::to_string(v) + ": distance " + exact(propagation.distance(v)) + ", unrolled " +
+                        exact(unrolled));
+        }
+        log.report();
+    }
 }
 
 // --- Bad input --------------------------------------------------------------------------------------------------
