@@ -36,7 +36,7 @@ std::vector<SharedMesh> shared_meshes() {
     std::vector<SharedMesh> meshes;
     const std::string dir = shared_data_dir();
     if (dir.empty()) return meshes;
-    for (const char* folder : {"anatomy", "classic", "cad", "stress"}) {
+    for (const char* folder : {"anatomy", "classic", "cad", "stress", "hard"}) {
         std::error_code error;
         const fs::path sub = fs::path(dir) / folder;
         if (!fs::is_directory(sub, error)) continue;

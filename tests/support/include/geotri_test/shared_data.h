@@ -22,7 +22,7 @@ struct SharedMesh {
     std::string test_name;
 };
 
-/// Every .off, .obj, .ply and .stl file under anatomy/, classic/, cad/ and stress/ of shared_data_dir(), sorted
+/// Every .off, .obj, .ply and .stl file under anatomy/, classic/, cad/, stress/ and hard/ of shared_data_dir(), sorted
 /// by relative path; empty if the folder is missing.
 std::vector<SharedMesh> shared_meshes();
 
