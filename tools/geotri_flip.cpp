@@ -56,7 +56,7 @@ int run(tools::Tool& tool) {
                        "there, judged after untangling what it leaves; 2: then with that untangling ending\n"
                        "with such collapses too; 0: neither. Default: 2, until these and the other last\n"
                        "resorts (pairs of flips, wider vertex moves) have made 10^8 windows of propagation\n"
-                       "(7-28 s on 2 cores; the same result on any machine). Given, they go on to the end,\n"
+                       "(10-28 s on 2 cores; the same result on any machine). Given, they go on to the end,\n"
                        "which can take minutes where they mend nothing")
             ->check(CLI::Range(0, 2));
     int bisection_rounds = geotri::UntangleOptions{}.bisection_rounds;
