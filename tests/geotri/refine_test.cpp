@@ -37,16 +37,10 @@ using OpenMesh::EdgeHandle;
 using OpenMesh::VertexHandle;
 using test::describe;
 using test::expect_valid_with_area;
+using test::traced;
 using test::unit_cube_g;
 
 constexpr double pi = 3.14159265358979323846;
-
-GeodesicTriangulation traced(const std::string& path, std::size_t faces) {
-    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
-    GeodesicTriangulation g(fine, test::decimated_coarse(*fine, faces));
-    trace(g);
-    return g;
-}
 
 /// Every polyline, location and face of G, to compare two runs.
 std::vector<Polyline> polylines_of(const GeodesicTriangulation& g) {

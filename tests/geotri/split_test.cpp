@@ -381,10 +381,7 @@ TEST(Split, a_face_split_beside_a_geodesic_that_passes_a_vertex_of_t_a_hair_away
 /// The anchor (a CAD part of genus 4) decimated to 320 faces and traced: trace leaves forks there, pairs of
 /// geodesics that leave a coarse vertex together and part at a saddle vertex of T.
 GeodesicTriangulation traced_anchor() {
-    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off"));
-    GeodesicTriangulation g(fine, test::decimated_coarse(*fine, 320));
-    trace(g);
-    return g;
+    return test::traced(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off", 320);
 }
 
 /// Violations of condition 2 (corners in order) that name coarse vertex v.

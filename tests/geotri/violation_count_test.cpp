@@ -216,12 +216,13 @@ TEST(ViolationCount, trials_on_a_torus_count_as_validate) {
     EXPECT_GT(check_random_trials(g, 400, 8, 2, "torus"), 0);
 }
 
+/// The bundled anchor at 320 faces, traced: trace leaves forks and crossings that untangling starts from.
+GeodesicTriangulation traced_anchor() {
+    return test::traced(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off", 320);
+}
+
 TEST(ViolationCount, trials_on_a_tangled_real_mesh_count_as_validate) {
-    // cad/anchor at 320 faces: trace leaves forks and crossings that untangling starts from.
-    const auto fine =
-        std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off"));
-    GeodesicTriangulation g(fine, decimated_coarse(*fine, 320));
-    trace(g);
+    GeodesicTriangulation g = traced_anchor();
     EXPECT_GT(validated(g), 0);
     EXPECT_GT(check_random_trials(g, 300, 10, 3, "anchor"), 0);
 }
@@ -283,15 +284,6 @@ int compare_after_changes_elsewhere(const GeodesicTriangulation& g, std::mt19937
         ++compared;
     }
     return compared;
-}
-
-/// The bundled anchor at 320 faces, traced: tangled, with violations of conditions 1-3.
-GeodesicTriangulation traced_anchor() {
-    const auto fine =
-        std::make_shared<const FineMesh>(load_fine_mesh(std::string(GEOTRI_TEST_DATA) + "/cad/anchor.off"));
-    GeodesicTriangulation g(fine, decimated_coarse(*fine, 320));
-    trace(g);
-    return g;
 }
 
 TEST(ViolationCount, a_flip_changes_the_count_alike_after_a_change_on_other_fine_faces) {

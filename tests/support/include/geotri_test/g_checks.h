@@ -64,6 +64,14 @@ inline CoarseMesh decimated_coarse(const FineMesh& fine, std::size_t target_face
     return make_coarse_mesh(decimate(fine, options).coarse, "decimated");
 }
 
+/// The mesh at `path`, decimated to at most `target_faces` faces (decimated_coarse()) and traced.
+inline GeodesicTriangulation traced(const std::string& path, std::size_t target_faces) {
+    auto fine = std::make_shared<const FineMesh>(load_fine_mesh(path));
+    GeodesicTriangulation g(fine, decimated_coarse(*fine, target_faces));
+    trace(g);
+    return g;
+}
+
 /// The mesh at `path`, decimated to its coarsest or to 320 faces (backing off where the topology stops it above
 /// them with geodesics that tangle, as geotri-decimate does) and traced in the decimation's classes, as the
 /// pipeline does.
