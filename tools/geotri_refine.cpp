@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -25,12 +26,14 @@ namespace tools = geotri::tools;
 
 constexpr int k_exit_invalid = 3;
 
-/// One line on stderr about a refinement that refine() ran again from the G given: what it changed, the result kept,
-/// and why it stopped where it met numerical trouble.
-void report_again(const char* program, const char* again, const char* kept, const std::string& error) {
-    const std::string why = error.empty() ? "" : " (refining again stopped: " + error + ")";
-    std::fprintf(stderr, "%s: refinement gave up on some triangles and %s; the result %s kept%s\n", program, again,
-                 kept, why.c_str());
+/// How a refinement of the input differs from the others, for the report on stderr.
+std::string describe(const geotri::RefineAttempt& attempt) {
+    char edge[32] = "default";
+    if (attempt.min_edge_length > 0.0) std::snprintf(edge, sizeof edge, "%.4g", attempt.min_edge_length);
+    char text[160];
+    std::snprintf(text, sizeof text, "shortest edge %s, vertices of T curved beyond %.3g of the angle, %s", edge,
+                  attempt.curved_fraction, attempt.vertex_moves ? "with vertex moves" : "without vertex moves");
+    return text;
 }
 
 int run(tools::Tool& tool) {
@@ -39,8 +42,9 @@ int run(tools::Tool& tool) {
                     "until no edge is longer than --max-length and G has --faces faces, then inserts circumcentres\n"
                     "until every corner angle is at least --min-angle, first moving a vertex of the worst triangle to\n"
                     "the centre of its star, or taking out an input vertex at a short edge, where that mends the\n"
-                    "corners around it. Every new edge is an exact geodesic, and G stays\n"
-                    "valid after every step (checked on all of G, in a second run, where a step's own checks missed).");
+                    "corners around it. Every new edge is an exact geodesic, and every step keeps G valid or is\n"
+                    "refused. Where some corners are left below --min-angle, the input is refined again in a few\n"
+                    "other ways, and the best result is kept.");
     tool.set_help_footer({"geotri-refine bone.flip.gtri -o bone.fine.gtri --min-angle 25",
                           "geotri-refine bone.flip.gtri -o bone.fine.gtri --faces 2000 --json"},
                          "the result is written, and it is valid", {"3  the result is written, but it is not valid (the input was not)"});
@@ -84,7 +88,7 @@ int run(tools::Tool& tool) {
         throw CLI::ValidationError("give at least one of --max-length, --faces and --min-angle");
     options.flip = !no_flip;
     options.threads = tool.common.threads;
-    options.remove_vertices = !keep_vertices;
+    options.keep_vertices = keep_vertices;
 
     tools::Progress progress(tool.program(), tool.verbose());
     progress.stage("loading " + input);
@@ -136,18 +140,19 @@ int run(tools::Tool& tool) {
         summary.add("small_corners_left", r.small_corners_left);
         summary.add("wide_corners_left", r.wide_corners_left);
         summary.add("vertex_cap_reached", r.vertex_cap_reached);
-        summary.add("second_attempt", r.second_attempt);
-        summary.add("second_attempt_kept", r.second_attempt_kept);
-        summary.add("second_attempt_error", r.second_attempt_error);
-        summary.add("without_moves_tried", r.without_moves_tried);
-        summary.add("without_moves_kept", r.without_moves_kept);
-        summary.add("without_moves_error", r.without_moves_error);
-        summary.add("finer_min_edge_tried", r.finer_min_edge_tried);
-        summary.add("finer_min_edge_kept", r.finer_min_edge_kept);
-        summary.add("finer_min_edge_error", r.finer_min_edge_error);
-        summary.add("finer_curved_tried", r.finer_curved_tried);
-        summary.add("finer_curved_kept", r.finer_curved_kept);
-        summary.add("finer_curved_error", r.finer_curved_error);
+        std::vector<tools::JsonSummary> attempts;
+        for (const geotri::RefineAttempt& attempt : r.attempts) {
+            tools::JsonSummary one;
+            one.add("min_edge_length", attempt.min_edge_length);
+            one.add("curved_fraction", attempt.curved_fraction);
+            one.add("vertex_moves", attempt.vertex_moves);
+            one.add("corners_left", attempt.small_corners_left);
+            one.add("smallest_corner_deg", attempt.min_angle_deg);
+            one.add("kept", attempt.kept);
+            one.add("error", attempt.error);
+            attempts.push_back(one);
+        }
+        summary.add("attempts", attempts);
         summary.add("longest_edge", r.longest_edge);
         tools::add_corner_angles(summary, r.angles_before, r.angles_after);
         summary.add("load_seconds", load_seconds);
@@ -179,18 +184,18 @@ int run(tools::Tool& tool) {
             std::fprintf(stderr, "%s: %d corners below %g degrees at cone points that force them, %d where refinement "
                                  "gave up\n",
                          program, r.exempt_corners, options.min_angle_deg, r.small_corners_left);
-        if (r.second_attempt)
-            report_again(program, "started again with nearly every vertex of T that is not flat treated as curved",
-                         r.second_attempt_kept ? "of the second attempt" : "of the first", r.second_attempt_error);
-        if (r.without_moves_tried)
-            report_again(program, "refined again without vertex moves",
-                         r.without_moves_kept ? "without moves" : "with moves", r.without_moves_error);
-        if (r.finer_min_edge_tried)
-            report_again(program, "refined again with a shortest edge of a twentieth of T's mean edge",
-                         r.finer_min_edge_kept ? "with it" : "with a tenth", r.finer_min_edge_error);
-        if (r.finer_curved_tried)
-            report_again(program, "refined again with more vertices of T counted as curved (a sixth of the angle)",
-                         r.finer_curved_kept ? "with them" : "before it", r.finer_curved_error);
+        if (r.attempts.size() > 1)
+            for (std::size_t k = 0; k < r.attempts.size(); ++k) {
+                const geotri::RefineAttempt& attempt = r.attempts[k];
+                if (!attempt.error.empty())
+                    std::fprintf(stderr, "%s: attempt %zu (%s) stopped: %s\n", program, k + 1,
+                                 describe(attempt).c_str(), attempt.error.c_str());
+                else
+                    std::fprintf(stderr, "%s: attempt %zu (%s): %d %s left, smallest %.2f degrees%s\n", program,
+                                 k + 1, describe(attempt).c_str(), attempt.small_corners_left,
+                                 attempt.small_corners_left == 1 ? "corner" : "corners", attempt.min_angle_deg,
+                                 attempt.kept ? "; kept" : "");
+            }
         if (r.wide_corners_left > 0)
             std::fprintf(stderr, "%s: %d corners above 180 degrees left\n", program, r.wide_corners_left);
         std::fprintf(stderr, "%s: %s; refined in %.3f s\n", program, r.valid_after ? "valid" : "INVALID", r.seconds);

@@ -17,8 +17,11 @@
 
 #include <gtest/gtest.h>
 
+#include "pipeline/refine_tactics.h"  // libgeotri/src: refine() with some of its tactics turned off
+
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -26,6 +29,7 @@
 #include <limits>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +53,15 @@ std::vector<Polyline> polylines_of(const GeodesicTriangulation& g) {
     return lines;
 }
 
+/// refine()'s options, with some of its tactics turned off (to reach what the others would mend first).
+struct Refinement : RefineOptions {
+    detail::RefineTactics tactics;
+};
+
+RefineResult refine(GeodesicTriangulation& g, const Refinement& refinement) {
+    return detail::refine(g, refinement, refinement.tactics);
+}
+
 double min_corner_deg(const GeodesicTriangulation& g) { return corner_angle_stats(g).min_deg; }
 
 /// The mean length of T's edges, of which refinement's default shortest edge is a tenth.
@@ -59,15 +72,47 @@ double mean_fine_edge(const GeodesicTriangulation& g) {
     return sum / mesh.num_halfedges();
 }
 
-/// A progress callback that throws NumericalError(`message`) at its first call after a line that holds `marker`: a
-/// refinement that refine() runs again, meeting numerical trouble once it has begun.
+/// A progress callback that throws NumericalError(`message`) once, at its first call after a line that holds
+/// `marker`: a refinement that refine() runs again, meeting numerical trouble once it has begun.
 std::function<void(const std::string&)> trouble_after(std::string marker, std::string message) {
-    return [marker = std::move(marker), message = std::move(message), started = false](
+    return [marker = std::move(marker), message = std::move(message), started = false, thrown = false](
                const std::string& where) mutable {
-        if (started) throw NumericalError(message);
-        started = where.find(marker) != std::string::npos;
+        if (started && !thrown) {
+            thrown = true;
+            throw NumericalError(message);
+        }
+        started = started || where.find(marker) != std::string::npos;
     };
 }
+
+/// The refinements of the G given that refine() ran, one line each: to compare two runs.
+std::string attempts_of(const RefineResult& r) {
+    std::string text;
+    for (const RefineAttempt& a : r.attempts)
+        text += std::to_string(a.min_edge_length) + " " + std::to_string(a.curved_fraction) + " " +
+                (a.vertex_moves ? "moves " : "no-moves ") + std::to_string(a.small_corners_left) + " " +
+                std::to_string(a.min_angle_deg) + (a.kept ? " kept " : " ") + a.error + "\n";
+    return text;
+}
+
+/// The attempt that refine() kept.
+const RefineAttempt& kept_attempt(const RefineResult& r) {
+    for (const RefineAttempt& a : r.attempts)
+        if (a.kept) return a;
+    throw std::logic_error("no attempt kept");
+}
+
+/// The first attempt that ran with vertices of T curved by more than `fraction` of the angle and with `moves` (and
+/// with a shortest edge other than the first attempt's, where `shorter_edge`), or null.
+const RefineAttempt* attempt_with(const RefineResult& r, double fraction, bool moves, bool shorter_edge = false) {
+    for (const RefineAttempt& a : r.attempts)
+        if (a.curved_fraction == fraction && a.vertex_moves == moves &&
+            (a.min_edge_length != r.attempts.front().min_edge_length) == shorter_edge)
+            return &a;
+    return nullptr;
+}
+
+constexpr double k_third = 1.0 / 3.0, k_nearly_all = 1e-3, k_sixth = 1.0 / 6.0;
 
 /// Whether every corner of G is at least `angle` degrees, compared in radians as refinement compares them (in
 /// degrees, a corner of exactly the angle may read one rounding below it).
@@ -80,7 +125,7 @@ bool every_corner_at_least(const GeodesicTriangulation& g, double angle) {
 
 TEST(Refine, bisection_of_the_cube_halves_its_edges_down_to_the_bound) {
     GeodesicTriangulation g = unit_cube_g();
-    RefineOptions options;
+    Refinement options;
     options.max_length = 0.6;
     const RefineResult r = refine(g, options);
     EXPECT_TRUE(r.valid_before);
@@ -96,7 +141,7 @@ TEST(Refine, bisection_of_the_cube_halves_its_edges_down_to_the_bound) {
 
 TEST(Refine, face_count_target_is_reached_exactly_by_edge_bisection) {
     GeodesicTriangulation g = unit_cube_g();
-    RefineOptions options;
+    Refinement options;
     options.target_faces = 100;
     const RefineResult r = refine(g, options);
     // Each edge split adds two faces: 12 + 2k reaches 100 exactly.
@@ -108,7 +153,7 @@ TEST(Refine, face_count_target_is_reached_exactly_by_edge_bisection) {
 
 TEST(Refine, bad_options_and_an_invalid_g_are_invalid_input) {
     GeodesicTriangulation g = unit_cube_g();
-    RefineOptions options;
+    Refinement options;
     options.min_angle_deg = 40.0;
     EXPECT_THROW(refine(g, options), InvalidInput);
     options.min_angle_deg = 0.0;
@@ -127,14 +172,14 @@ TEST(Refine, bad_options_and_an_invalid_g_are_invalid_input) {
 /// Refines G to `angle` degrees and checks: valid, every corner that is not exempt at least `angle`, and the same
 /// result when run again. The result goes to `out` when given.
 /// Refinement without vertex moves: for the tests of what moves make rarer.
-RefineOptions without_moves() {
-    RefineOptions options;
-    options.move_vertices = false;
+Refinement without_moves() {
+    Refinement options;
+    options.tactics.move_vertices = false;
     return options;
 }
 
 void check_min_angle(GeodesicTriangulation g, double angle, const std::string& name, RefineResult* out = nullptr,
-                     RefineOptions options = {}, GeodesicTriangulation* refined = nullptr) {
+                     Refinement options = {}, GeodesicTriangulation* refined = nullptr) {
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     GeodesicTriangulation twin = g;
     options.min_angle_deg = angle;
@@ -153,14 +198,11 @@ void check_min_angle(GeodesicTriangulation g, double angle, const std::string& n
     expect_valid_with_area(g);
     // Again on one thread: on a small T, the attempts that refine() may need ran at once, on threads of their own;
     // one by one, only those needed run, and they give the same G and the same choices.
-    RefineOptions one_thread = options;
+    Refinement one_thread = options;
     one_thread.threads = 1;
     const RefineResult again = refine(twin, one_thread);
     EXPECT_EQ(polylines_of(twin), polylines_of(g));
-    EXPECT_EQ(again.second_attempt, r.second_attempt);
-    EXPECT_EQ(again.second_attempt_kept, r.second_attempt_kept);
-    EXPECT_EQ(again.without_moves_tried, r.without_moves_tried);
-    EXPECT_EQ(again.without_moves_kept, r.without_moves_kept);
+    EXPECT_EQ(attempts_of(again), attempts_of(r));
     EXPECT_EQ(again.flips, r.flips);
     if (out) *out = r;
     if (refined) *refined = std::move(g);
@@ -197,26 +239,22 @@ TEST(Refine, attempts_ahead_of_time_give_what_attempts_one_by_one_give) {
     }
     for (Case& c : cases) {
         untangle_and_flip(c.g);
-        RefineOptions options;
+        Refinement options;
         options.min_angle_deg = c.angle;
         // With either, the first attempt reaches the angle on femur_cgal and footbones.
-        options.split_inside = false;
-        options.split_at_saddles = false;
+        options.tactics.split_inside = false;
+        options.tactics.split_at_saddles = false;
         options.threads = 1;
         GeodesicTriangulation one_by_one = c.g;
         const RefineResult sequential = refine(one_by_one, options);
         options.threads = 5;
         const RefineResult ahead = refine(c.g, options);
-        std::cout << "[ refine   ] " << c.name << ": second attempt " << ahead.second_attempt << ", without moves "
-                  << ahead.without_moves_tried << " (kept " << ahead.without_moves_kept << ")\n";
-        EXPECT_EQ(ahead.finer_curved_kept, c.needs == Needs::more_curved_kept) << c.name;
-        EXPECT_EQ(ahead.without_moves_kept, c.needs == Needs::without_moves_kept) << c.name;
+        std::cout << "[ refine   ] " << c.name << ": attempts\n" << attempts_of(ahead);
+        EXPECT_EQ(kept_attempt(ahead).curved_fraction == k_sixth, c.needs == Needs::more_curved_kept) << c.name;
+        EXPECT_EQ(!kept_attempt(ahead).vertex_moves, c.needs == Needs::without_moves_kept) << c.name;
+        EXPECT_EQ(ahead.attempts.size() == 1, c.needs == Needs::first_only) << c.name;
         EXPECT_EQ(polylines_of(c.g), polylines_of(one_by_one)) << c.name;
-        EXPECT_EQ(ahead.second_attempt_kept, sequential.second_attempt_kept) << c.name;
-        EXPECT_EQ(ahead.without_moves_tried, sequential.without_moves_tried) << c.name;
-        EXPECT_EQ(ahead.without_moves_kept, sequential.without_moves_kept) << c.name;
-        EXPECT_EQ(ahead.finer_min_edge_kept, sequential.finer_min_edge_kept) << c.name;
-        EXPECT_EQ(ahead.finer_curved_kept, sequential.finer_curved_kept) << c.name;
+        EXPECT_EQ(attempts_of(ahead), attempts_of(sequential)) << c.name;
         EXPECT_EQ(ahead.moved_vertices, sequential.moved_vertices) << c.name;
         EXPECT_EQ(ahead.flips, sequential.flips) << c.name;
     }
@@ -231,7 +269,7 @@ TEST(Refine, the_result_is_the_same_for_any_thread_count) {
     std::vector<std::vector<Polyline>> results;
     for (int threads : {1, 2, 3}) {
         GeodesicTriangulation g = given;
-        RefineOptions options;
+        Refinement options;
         options.min_angle_deg = 25.0;
         options.threads = threads;
         const RefineResult r = refine(g, options);
@@ -254,7 +292,7 @@ TEST(Refine, a_g_flipped_in_memory_refines_as_the_same_g_read_from_its_file) {
     write_gtri(file.string(), flipped);
     GeodesicTriangulation read = read_gtri(file.string(), flipped.shared_fine());
     std::filesystem::remove(file);
-    RefineOptions options;
+    Refinement options;
     options.min_angle_deg = 30.0;
     refine(flipped, options);
     refine(read, options);
@@ -264,9 +302,9 @@ TEST(Refine, a_g_flipped_in_memory_refines_as_the_same_g_read_from_its_file) {
 TEST(Refine, with_keep_vertices_every_vertex_of_the_g_given_stays) {
     GeodesicTriangulation g = traced(std::string(GEOTRI_TEST_DATA) + "/classic/bob_small.ply", 100);
     const GeodesicTriangulation given = g;
-    RefineOptions options;
+    Refinement options;
     options.min_angle_deg = 30.0;
-    options.remove_vertices = false;
+    options.keep_vertices = true;
     const RefineResult r = refine(g, options);
     EXPECT_EQ(r.removed_vertices, 0);
     for (VertexHandle v : given.coarse().vertices()) {
@@ -348,9 +386,9 @@ TEST(Refine, corners_above_180_degrees_are_cut_by_splits_inside_their_patch) {
     GeodesicTriangulation without = g, refined = g;
     RefineResult r;
     check_min_angle(g, 25.0, "triceratops, 320 faces", &r, {}, &refined);
-    RefineOptions options;
+    Refinement options;
     options.min_angle_deg = 25.0;
-    options.split_inside = false;
+    options.tactics.split_inside = false;
     const RefineResult before = refine(without, options);
     std::cout << "[ refine   ] corners above 180 degrees left: " << r.wide_corners_left << ", without splits inside "
               << before.wide_corners_left << " (" << before.small_corners_left << " below the angle)\n";
@@ -371,7 +409,7 @@ TEST(Refine, vertex_moves_reach_30_degrees_where_circumcentres_alone_cascade) {
         GeodesicTriangulation g = traced(test::shared_mesh(mesh).path, 320);
         untangle_and_flip(g);
         ASSERT_TRUE(validate(g).valid) << describe(validate(g));
-        RefineOptions options = without_moves();
+        Refinement options = without_moves();
         options.min_angle_deg = 30.0;
         GeodesicTriangulation alone = g;
         const RefineResult cascade = refine(alone, options);
@@ -398,12 +436,12 @@ TEST(Refine, where_vertex_moves_leave_a_few_corners_refinement_tries_without_the
     GeodesicTriangulation g = test::traced_in_classes(test::shared_mesh(mesh).path, mesh, false);
     untangle_and_flip(g);
     RefineResult r;
-    RefineOptions options;
-    options.split_inside = false;
-    options.split_at_saddles = false;
+    Refinement options;
+    options.tactics.split_inside = false;
+    options.tactics.split_at_saddles = false;
     check_min_angle(g, 30.0, mesh, &r, options);
-    EXPECT_TRUE(r.without_moves_tried);
-    EXPECT_TRUE(r.without_moves_kept);
+    ASSERT_NE(attempt_with(r, k_third, false), nullptr);
+    EXPECT_FALSE(kept_attempt(r).vertex_moves);
     EXPECT_EQ(r.moved_vertices, 0);  // the counts are those of the result returned
 }
 
@@ -439,7 +477,7 @@ TEST(Refine, a_vertex_whose_geodesic_bends_at_a_saddle_of_t_moves_onto_it) {
     EXPECT_EQ(r.exempt_corners, 0);
     EXPECT_GT(r.moves_onto_saddles, 0);
     // The saddle moves are tried in parallel: the same G on one thread.
-    RefineOptions one_thread;
+    Refinement one_thread;
     one_thread.min_angle_deg = 30.0;
     one_thread.threads = 1;
     refine(g, one_thread);
@@ -456,7 +494,7 @@ TEST(Refine, corners_above_180_degrees_left_at_the_vertex_cap_are_cut_at_last) {
     GeodesicTriangulation g = traced(test::shared_mesh("anatomy/skull_thing74168.stl").path, 320);
     untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
-    RefineOptions options = without_moves();  // with them, refinement does not cascade there
+    Refinement options = without_moves();  // with them, refinement does not cascade there
     options.min_angle_deg = 25.0;
     options.max_new_vertices = 4 * static_cast<int>(g.coarse().n_faces()) + 100;  // the default, given
     GeodesicTriangulation to_the_letter = g;
@@ -489,7 +527,7 @@ TEST(Refine, a_refinement_nearly_done_at_the_vertex_cap_goes_on) {
     untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     const std::size_t given = g.coarse().n_vertices();
-    RefineOptions options = without_moves();  // with them, it stops far below the cap, one corner left
+    Refinement options = without_moves();  // with them, it stops far below the cap, one corner left
     options.min_angle_deg = 30.0;
     const int cap = 4 * static_cast<int>(g.coarse().n_faces()) + 100;  // the default, given
     options.max_new_vertices = cap;
@@ -521,24 +559,23 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     const GeodesicTriangulation flipped = g;
     RefineResult r;
     // With vertex moves or splits at saddles, triceratops reaches 25 degrees at the first attempt.
-    RefineOptions plain = without_moves();
-    plain.split_at_saddles = false;
+    Refinement plain = without_moves();
+    plain.tactics.split_at_saddles = false;
     check_min_angle(g, 25.0, "triceratops, 320 faces", &r, plain);
-    EXPECT_TRUE(r.second_attempt);
-    EXPECT_TRUE(r.second_attempt_kept);
+    EXPECT_EQ(kept_attempt(r).curved_fraction, k_nearly_all);
 
     // At 30 degrees both attempts give up next to saddles of T: the first result, which leaves fewer corners, is
     // kept, and refining again gives the same G. The shortest edge given (the default's), refinement does not
     // start again with a shorter one (where_refinement_gives_up_it_starts_again_with_a_shorter_shortest_edge).
-    RefineOptions options = plain;
+    Refinement options = plain;
     options.min_angle_deg = 30.0;
     options.min_edge_length = 0.1 * mean_fine_edge(flipped);
     GeodesicTriangulation at_30 = flipped, again = flipped;
     const RefineResult first_kept = refine(at_30, options);
     std::cout << "[ refine   ] triceratops at 30 degrees: " << first_kept.angles_after.min_deg << "°, "
               << first_kept.small_corners_left << " corners left, " << at_30.coarse().n_faces() << " faces\n";
-    EXPECT_TRUE(first_kept.second_attempt);
-    EXPECT_FALSE(first_kept.second_attempt_kept);
+    ASSERT_NE(attempt_with(first_kept, k_nearly_all, false), nullptr);
+    EXPECT_TRUE(first_kept.attempts.front().kept);
     EXPECT_GT(first_kept.small_corners_left, 0);
     EXPECT_TRUE(first_kept.valid_after);
     expect_valid_with_area(at_30);
@@ -546,16 +583,17 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_treating_every_curved_ver
     EXPECT_EQ(polylines_of(again), polylines_of(at_30));
 
     // A second attempt that meets numerical trouble (here thrown from the progress callback once it has begun)
-    // leaves the first result, as refining without it gives, and says why. On one thread, so that the second
-    // attempt begins after the first has ended (on more, it runs ahead, and its progress is reported only once
-    // refine() waits for it: it may have ended by then).
+    // leaves the first result, as refining without it gives, and says why (no other attempt runs here: with a
+    // shortest edge given and 6 corners left, neither a shorter edge nor more vertices curved are tried). On one
+    // thread, so that the second attempt begins after the first has ended (on more, it runs ahead, and its progress
+    // is reported only once refine() waits for it: it may have ended by then).
     GeodesicTriangulation troubled = flipped;
     options.threads = 1;
-    options.progress = trouble_after("starting again", "trouble in the second attempt");
+    options.progress = trouble_after("nearly every vertex of T curved", "trouble in the second attempt");
     const RefineResult stopped = refine(troubled, options);
-    EXPECT_TRUE(stopped.second_attempt);
-    EXPECT_FALSE(stopped.second_attempt_kept);
-    EXPECT_EQ(stopped.second_attempt_error, "trouble in the second attempt");
+    ASSERT_NE(attempt_with(stopped, k_nearly_all, false), nullptr);
+    EXPECT_EQ(attempt_with(stopped, k_nearly_all, false)->error, "trouble in the second attempt");
+    EXPECT_TRUE(stopped.attempts.front().kept);
     EXPECT_EQ(stopped.small_corners_left, first_kept.small_corners_left);
     EXPECT_EQ(polylines_of(troubled), polylines_of(at_30));
 }
@@ -569,36 +607,41 @@ TEST(Refine, where_refinement_gives_up_it_starts_again_with_a_shorter_shortest_e
                      << "': the real-mesh refinement test needs them";
     GeodesicTriangulation flipped = traced(test::shared_mesh("anatomy/femur_cgal.off").path, 320);
     untangle_and_flip(flipped);
-    RefineOptions options;
+    Refinement options;
     options.min_angle_deg = 30.0;
     // With splits at saddles, a tenth leaves a single corner: the retry with more vertices curved then follows the
     // one that meets trouble below, and the result is no longer the tenth's.
-    options.split_at_saddles = false;
+    options.tactics.split_at_saddles = false;
     GeodesicTriangulation g = flipped, tenth = flipped, troubled = flipped;
     const RefineResult r = refine(g, options);
-    RefineOptions given_tenth = options;
+    Refinement given_tenth = options;
     given_tenth.min_edge_length = 0.1 * mean_fine_edge(flipped);
     const RefineResult with_tenth = refine(tenth, given_tenth);
     std::cout << "[ refine   ] femur_cgal at 30 degrees: " << with_tenth.angles_after.min_deg << "°, "
               << with_tenth.small_corners_left << " corners left with a tenth of the mean edge; "
               << r.angles_after.min_deg << "°, " << r.small_corners_left << " left as refine() chose\n";
-    EXPECT_FALSE(with_tenth.finer_min_edge_tried);
+    for (const RefineAttempt& a : with_tenth.attempts) EXPECT_EQ(a.min_edge_length, given_tenth.min_edge_length);
     ASSERT_GT(with_tenth.small_corners_left, 0);
-    EXPECT_TRUE(r.finer_min_edge_tried);
-    EXPECT_TRUE(r.finer_min_edge_kept);
+    EXPECT_GT(kept_attempt(r).min_edge_length, 0.0);
     EXPECT_LT(r.small_corners_left, with_tenth.small_corners_left);
     EXPECT_TRUE(r.valid_after);
     expect_valid_with_area(g);
 
-    // Numerical trouble there (thrown from the progress callback once it has begun) leaves the first result, and
-    // says why.
+    // Numerical trouble in that attempt (thrown from the progress callback once it has begun) is said, and the best
+    // of the other attempts is returned: the others run as they would after a worse result.
     options.progress = trouble_after("shorter shortest edge", "trouble with the shorter edge");
     const RefineResult stopped = refine(troubled, options);
-    EXPECT_TRUE(stopped.finer_min_edge_tried);
-    EXPECT_FALSE(stopped.finer_min_edge_kept);
-    EXPECT_EQ(stopped.finer_min_edge_error, "trouble with the shorter edge");
-    EXPECT_EQ(stopped.small_corners_left, with_tenth.small_corners_left);
-    EXPECT_EQ(polylines_of(troubled), polylines_of(tenth));
+    std::cout << "[ refine   ] the same, with trouble in the shorter edge's first attempt:\n" << attempts_of(stopped);
+    ASSERT_NE(attempt_with(stopped, k_third, true, true), nullptr);
+    EXPECT_EQ(attempt_with(stopped, k_third, true, true)->error, "trouble with the shorter edge");
+    EXPECT_FALSE(attempt_with(stopped, k_third, true, true)->kept);
+    int fewest = std::numeric_limits<int>::max();
+    for (const RefineAttempt& a : stopped.attempts)
+        if (a.error.empty()) fewest = std::min(fewest, a.small_corners_left);
+    EXPECT_EQ(stopped.small_corners_left, fewest);
+    EXPECT_EQ(kept_attempt(stopped).small_corners_left, fewest);
+    EXPECT_TRUE(stopped.valid_after);
+    expect_valid_with_area(troubled);
 }
 
 // With a few corners still left after that, it refines the G given once more, with the shortest edge of the result
@@ -611,28 +654,28 @@ TEST(Refine, where_a_few_corners_are_left_it_starts_again_with_more_vertices_of_
     GeodesicTriangulation flipped =
         test::traced_in_classes(test::shared_mesh("anatomy/femur_cgal.off").path, "femur_cgal", false);
     untangle_and_flip(flipped);
-    RefineOptions options;
+    Refinement options;
     options.min_angle_deg = 30.0;
-    options.split_inside = false;  // with them, the shorter edge alone reaches the angle
+    options.tactics.split_inside = false;  // with them, the shorter edge alone reaches the angle
     GeodesicTriangulation g = flipped, troubled = flipped;
     const RefineResult r = refine(g, options);
-    EXPECT_TRUE(r.finer_min_edge_tried);
-    EXPECT_TRUE(r.finer_min_edge_kept);  // better than the first result, though not the one returned
-    EXPECT_TRUE(r.finer_curved_tried);
-    EXPECT_TRUE(r.finer_curved_kept);
+    std::cout << "[ refine   ] femur_cgal at 30 degrees: attempts\n" << attempts_of(r);
+    // The shorter edge did better than the first attempt, and the sixth with it better still.
+    ASSERT_NE(attempt_with(r, k_third, true, true), nullptr);
+    EXPECT_LT(attempt_with(r, k_third, true, true)->small_corners_left, r.attempts.front().small_corners_left);
+    EXPECT_EQ(kept_attempt(r).curved_fraction, k_sixth);
+    EXPECT_GT(kept_attempt(r).min_edge_length, 0.0);
     EXPECT_EQ(r.small_corners_left, 0);
     EXPECT_EQ(r.exempt_corners, 0);
     EXPECT_TRUE(every_corner_at_least(g, 30.0));
     EXPECT_TRUE(r.valid_after);
     expect_valid_with_area(g);
 
-    // Numerical trouble there leaves the result that stood before it (the shorter edge's, with corners left).
+    // Numerical trouble there leaves the best result of the others (the shorter edge's, with corners left).
     options.progress = trouble_after("more vertices of T curved", "trouble with more vertices curved");
     const RefineResult stopped = refine(troubled, options);
-    EXPECT_TRUE(stopped.finer_curved_tried);
-    EXPECT_FALSE(stopped.finer_curved_kept);
-    EXPECT_EQ(stopped.finer_curved_error, "trouble with more vertices curved");
-    EXPECT_TRUE(stopped.finer_min_edge_kept);
+    ASSERT_NE(attempt_with(stopped, k_sixth, true, true), nullptr);
+    EXPECT_EQ(attempt_with(stopped, k_sixth, true, true)->error, "trouble with more vertices curved");
     EXPECT_GT(stopped.small_corners_left, 0);
     EXPECT_TRUE(stopped.valid_after);
 }
@@ -696,11 +739,11 @@ TEST(Refine, an_edge_is_split_at_a_saddle_of_t_that_its_geodesic_bends_at) {
     untangle_and_flip(g);
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     GeodesicTriangulation without = g;
-    RefineOptions options;
+    Refinement options;
     options.min_angle_deg = 30.0;
-    options.split_inside = false;  // with them, refinement reaches the angle without splits at saddles too
+    options.tactics.split_inside = false;  // with them, refinement reaches the angle without splits at saddles too
     const RefineResult r = refine(g, options);
-    options.split_at_saddles = false;
+    options.tactics.split_at_saddles = false;
     const RefineResult before = refine(without, options);
     std::cout << "[ refine   ] cheese at 30 degrees: " << r.angles_after.min_deg << "°, " << g.coarse().n_faces()
               << " faces, " << r.splits_at_saddles << " splits at saddles; without them " << before.angles_after.min_deg
@@ -735,9 +778,10 @@ TEST(Refine, saddles_of_t_that_take_curvature_out_of_a_face_get_a_vertex_of_g) {
         RefineResult r;
         check_min_angle(g, angle, std::string(mesh) + ", 320 faces", &r);
         EXPECT_GT(r.splits_at_saddles, 0);
-        RefineOptions options;
+        Refinement options;
         options.min_angle_deg = angle;
-        options.split_at_saddles = false;
+        options.tactics.split_at_saddles = false;
+        options.tactics.other_attempts = false;  // each another whole refinement of man's 35k faces, giving up too
         const RefineResult before = refine(without, options);
         std::cout << "[ refine   ] without splits at saddles: " << before.angles_after.min_deg << "°, "
                   << before.small_corners_left << " corners left\n";
@@ -779,10 +823,11 @@ TEST(Refine, faces_that_nothing_else_mends_get_a_split_well_inside_their_patch_o
         RefineResult r;
         check_min_angle(g, 25.0, std::string(mesh) + (coarsest ? ", coarsest" : ", 320 faces"), &r);
         EXPECT_GT(r.inside_splits, 0);
-        RefineOptions options;
+        Refinement options;
         options.min_angle_deg = 25.0;
-        options.split_inside = false;
-        options.split_at_saddles = false;  // with them, triceratops reaches the angle without splits inside too
+        options.tactics.split_inside = false;
+        options.tactics.split_at_saddles = false;  // with them, triceratops reaches the angle without splits inside too
+        options.tactics.other_attempts = false;    // each another whole refinement, giving up too
         const RefineResult before = refine(without, options);
         std::cout << "[ refine   ] without splits inside patches: " << before.angles_after.min_deg << "°, "
                   << before.small_corners_left << " corners left\n";
@@ -825,9 +870,9 @@ TEST(Refine, the_smallest_corner_never_gets_smaller) {
     ASSERT_TRUE(validate(g).valid) << describe(validate(g));
     const double before = min_corner_deg(g);
     const GeodesicTriangulation given = g;
-    RefineOptions options;
+    Refinement options;
     options.min_angle_deg = 25.0;
-    options.split_at_saddles = false;
+    options.tactics.split_at_saddles = false;
     double sum = 0.0;
     for (int h = 0; h < g.fine().mesh.num_halfedges(); ++h) sum += g.fine().mesh.length(h);
     options.min_edge_length = 0.2 * sum / g.fine().mesh.num_halfedges();
@@ -843,7 +888,7 @@ TEST(Refine, the_smallest_corner_never_gets_smaller) {
     expect_valid_with_area(g);
     // With them, whose splits of a geodesic may make corners down to the smallest one given.
     GeodesicTriangulation with_saddles = given;
-    options.split_at_saddles = true;
+    options.tactics.split_at_saddles = true;
     const RefineResult s = refine(with_saddles, options);
     std::cout << "[ refine   ] with splits at saddles: " << s.angles_after.min_deg << "°, " << s.splits_at_saddles
               << " of them\n";

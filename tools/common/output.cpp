@@ -95,6 +95,12 @@ void JsonSummary::add(const std::string& key, long long value) { add_raw(key, st
 
 void JsonSummary::add(const std::string& key, bool value) { add_raw(key, value ? "true" : "false"); }
 
+void JsonSummary::add(const std::string& key, const std::vector<JsonSummary>& objects) {
+    std::string array = "[";
+    for (std::size_t i = 0; i < objects.size(); ++i) array += (i > 0 ? ", " : "") + objects[i].str();
+    add_raw(key, array + "]");
+}
+
 std::string JsonSummary::str() const {
     std::string out = "{";
     for (std::size_t i = 0; i < fields_.size(); ++i) {

@@ -41,7 +41,7 @@ private:
 /// Lower-case extension of a path with its dot (".ply"), or empty.
 std::string extension_of(const std::string& path);
 
-/// A flat JSON object, written on one line in the order of the calls.
+/// A JSON object, written on one line in the order of the calls: values, and arrays of such objects.
 class JsonSummary {
 public:
     void add(const std::string& key, const std::string& value);
@@ -52,6 +52,7 @@ public:
     void add(const std::string& key, std::size_t value) { add(key, static_cast<long long>(value)); }
     void add(const std::string& key, int value) { add(key, static_cast<long long>(value)); }
     void add(const std::string& key, bool value);
+    void add(const std::string& key, const std::vector<JsonSummary>& objects);
 
     std::string str() const;
 

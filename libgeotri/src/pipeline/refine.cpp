@@ -20,6 +20,7 @@
 #include "core/triangle_layout.h"
 #include "ops/with_workspace.h"
 #include "pipeline/flip_to_delaunay_detail.h"
+#include "pipeline/refine_tactics.h"
 #include "pipeline/speculative_attempts.h"
 
 #include <Eigen/Dense>
@@ -96,12 +97,9 @@ constexpr double k_min_edge_fraction = 0.1;
 // results swing with the rate (at 25 and 30 degrees: a tenth 1 and 3 corners left, 13.1 degrees; a half 1 and 2,
 // 27.1; three quarters 1 and 9, 25.3); no other G of the 320-face sweep changes with it.
 constexpr double k_feature_grading = 0.25;
-// Where refinement to a minimum angle gives up on some triangles without reaching its vertex cap, on a T of under
-// k_min_faces_for_threads faces, it starts again from the G given with this fraction instead (refine()).
+// The shortest edge of the attempts that refine() makes where the others give up, as a fraction of T's mean edge.
 constexpr double k_finer_min_edge_fraction = 0.05;
-// Where refinement still gives up on a few triangles (at most k_few_corners_left corners) on such a T, it starts
-// again from the G given with vertices of T curved by more than this fraction of the minimum angle counted as
-// curved, instead of k_curved_fraction (refine()).
+// The curved fraction (k_curved_fraction) of the last attempts that refine() makes, where a few corners are left.
 constexpr double k_finer_curved_fraction = 1.0 / 6.0;
 
 /// The mean length of T's edges.
@@ -239,9 +237,10 @@ public:
     /// `curved_fraction`: a vertex of T whose cone angle differs from 2π by more than this fraction of the minimum
     /// angle counts as curved.
     /// `stop_if_cancelled`, when given, is called after every step, and may throw to end refinement there.
-    Refiner(GeodesicTriangulation& g, const RefineOptions& options, RefineResult& result, double curved_fraction,
-            std::function<void()> stop_if_cancelled = {})
-        : g_(g), options_(options), result_(result), propagation_(g.fine().mesh), pool_(g.fine().mesh),
+    Refiner(GeodesicTriangulation& g, const RefineOptions& options, const detail::RefineTactics& tactics,
+            RefineResult& result, double curved_fraction, std::function<void()> stop_if_cancelled = {})
+        : g_(g), options_(options), tactics_(tactics), result_(result), propagation_(g.fine().mesh),
+          pool_(g.fine().mesh),
           stop_if_cancelled_(std::move(stop_if_cancelled)) {
         const geodesic::Mesh& mesh = g.fine().mesh;
         min_edge_ = options.min_edge_length > 0.0 ? options.min_edge_length
@@ -348,7 +347,7 @@ public:
                         given_up.clear();  // the coarse mesh was renumbered
                         continue;
                     }
-                    if (!(options_.move_vertices && may_move() && move_a_vertex_of(tiny, &given_up, MoveGoal{})))
+                    if (!(tactics_.move_vertices && may_move() && move_a_vertex_of(tiny, &given_up, MoveGoal{})))
                         given_up.insert(vertices_of(coarse, tiny));
                     progress("small triangles");
                     continue;
@@ -360,7 +359,7 @@ public:
                 // neighbours' (split_inside_or_around()).
                 if (given_up.empty() || inside_splits_) break;
                 if (all_removable) {
-                    inside_splits_ = options_.split_inside;
+                    inside_splits_ = tactics_.split_inside;
                     if (!inside_splits_) break;
                     given_up.clear();
                     continue;
@@ -383,14 +382,14 @@ public:
                 given_up.clear();  // the coarse mesh was renumbered
                 continue;
             }
-            if (options_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, MoveGoal{})) continue;
+            if (tactics_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, MoveGoal{})) continue;
             // Where neither a circumcentre nor a split mends the worst triangle, one of its vertices may move onto
             // a saddle of T that its geodesics bend at, before the triangle is given up.
             // In the end game (at most k_few_corners_left faces below the angle, or the last resort's pass) the
             // triangle may be split at a saddle of T that its geodesics bend at, or at a curved vertex of T in its
             // circumcircle (split_at_saddle()).
             if (!refine_face(worst) &&
-                !(options_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, saddle_move)) &&
+                !(tactics_.move_vertices && may_move() && move_a_vertex_of(worst, &given_up, saddle_move)) &&
                 !((faces.size_below() <= k_few_corners_left || inside_splits_) && split_at_saddle(worst)))
                 given_up.insert(vertices_of(coarse, worst));
             progress("angle refinement");
@@ -552,14 +551,14 @@ private:
         const std::optional<Centre> centre = circumcentre(f);
         if (centre && insert_in_one_of(centre_patches(f, *centre), centre->point, floor, min_length, floor))
             return true;
-        if (options_.split_inside && split_inside(f, floor, min_length)) {
+        if (tactics_.split_inside && split_inside(f, floor, min_length)) {
             ++result_.inside_splits;
             return true;
         }
         // Else a vertex of f moved, where that narrows the widest corner of the faces it changes and keeps their
         // corners at least the floor (or what they were): the moves that raise the minimum angle may open such
         // corners, and the splits above then be refused (the lumbar spine at 25 degrees).
-        return options_.move_vertices && may_move() && move_a_vertex_of(f, given_up, MoveGoal{true, floor});
+        return tactics_.move_vertices && may_move() && move_a_vertex_of(f, given_up, MoveGoal{true, floor});
     }
 
     /// Where refinement stops with triangles below the minimum angle (at the vertex cap, or given up), the corners
@@ -834,7 +833,7 @@ private:
     /// polygon's vertices is at least the minimum angle, above what it was, and G's smallest corner stays above
     /// keep_above_. Removals mend only; each removes a vertex of the G given, so there are finitely many.
     bool remove_a_vertex_of(FaceHandle f) {
-        if (!options_.remove_vertices) return false;
+        if (options_.keep_vertices) return false;
         const CoarseMesh& coarse = g_.coarse();
         HalfedgeHandle shortest;
         for (HalfedgeHandle h : halfedges_of(coarse, f))
@@ -913,15 +912,15 @@ private:
     /// that meets `goal` and raises the smallest corner of the faces that it and its flips change the most (or,
     /// to narrow, lowers their widest the most). On a bumpy T, circumcentres cascade into ever smaller
     /// triangles whose corners the bumps distort; moving a vertex mends a corner without making a triangle.
-    /// Vertices at curved points of T stay, and so do those of the G given with RefineOptions::remove_vertices
-    /// off. Each move that raises the minimum angle raises the smallest corner of the faces it changes and leaves
+    /// Vertices at curved points of T stay, and so do those of the G given with RefineOptions::keep_vertices.
+    /// Each move that raises the minimum angle raises the smallest corner of the faces it changes and leaves
     /// the others as they are. The candidates are tried in parallel (each with its flips on one thread; a lone one
     /// with its flips on all), and the choice does not depend on the thread count. The faces that the move changes
     /// leave `given_up` (when given).
     bool move_a_vertex_of(FaceHandle f, std::set<std::array<int, 3>>* given_up, const MoveGoal& goal) {
         std::vector<MoveCandidate> candidates;
         for (VertexHandle v : g_.coarse().fv_range(f)) {
-            if (curved(v) || (!options_.remove_vertices &&
+            if (curved(v) || (options_.keep_vertices &&
                               std::find(input_.begin(), input_.end(), g_.location(v)) != input_.end()))
                 continue;
             // A star whose move failed before, and that has not changed since, fails again.
@@ -1205,7 +1204,7 @@ private:
     /// cheese to 25 degrees but left man at 30 degrees with 77 corners at 1.8 degrees instead of 15 at 18.1,
     /// cascading next to the short edges: hence the end game only (and the last resort's pass, split_inside).
     bool split_at_saddle(FaceHandle f) {
-        if (!options_.split_at_saddles) return false;
+        if (!tactics_.split_at_saddles) return false;
         std::vector<int> cones = saddles_on_edges_of(f);
         if (const std::optional<Centre> centre = circumcentre(f))
             if (const std::optional<int> near = curved_vertex_near(centre->point, centre->radius))
@@ -1414,6 +1413,7 @@ private:
 
     GeodesicTriangulation& g_;
     const RefineOptions& options_;
+    const detail::RefineTactics tactics_;
     RefineResult& result_;
     geodesic::ExactGeodesic propagation_;
     PropagationPool pool_;  ///< for the other threads of the flips' and reconnections' parallel loops
@@ -1454,69 +1454,97 @@ struct Attempt {
     RefineResult result;
 };
 
-/// The refinements of the G given that refine() may need, in this order: as the options say, with the vertices of T
-/// curved by more than `curved_fraction` of the angle counted as curved; the same with nearly every vertex of T that
-/// is not flat counted as curved (k_second_curved_fraction); and, where `without_moves`, both
-/// again without vertex moves. refine() knows which it needs only from the results of those before, so on `threads`
-/// > 1 they all start at once (SpeculativeAttempts), and each one's progress is reported while refine() waits for it.
-class Attempts {
+/// The refinements of the G given with one shortest edge: with the vertices of T curved by more than
+/// `curved_fraction` of the angle counted as curved, then with nearly every vertex of T that is not flat
+/// (k_second_curved_fraction); with vertex moves, then, where the tactics move vertices, both again without. refine()
+/// knows which it needs only from the results of those before, so on `threads` > 1 they all start at once
+/// (SpeculativeAttempts), and each one's progress is reported while refine() waits for it.
+class AttemptGroup {
 public:
-    Attempts(const GeodesicTriangulation& given, const RefineResult& given_result, const RefineOptions& options,
-             double curved_fraction, bool without_moves, int threads)
-        : given_(given), given_result_(given_result), curved_fraction_(curved_fraction),
-          progress_(options.progress),
-          options_(options_of_attempts(options, without_moves)), results_(options_.size()),
-          runner_(options_.size(), threads, [this](std::size_t k) { run(k); }) {}
+    AttemptGroup(const GeodesicTriangulation& given, const RefineResult& given_result, const RefineOptions& options,
+                 const detail::RefineTactics& tactics, double min_edge_length, double curved_fraction, int threads)
+        : given_(given), given_result_(given_result), options_(options), tactics_(tactics),
+          variants_(variants_of(min_edge_length, curved_fraction, tactics.move_vertices)),
+          runner_(variants_.size(), threads, [this](std::size_t k) { run(k); }) {}
 
+    std::size_t size() const { return variants_.size(); }
+    /// How attempt k refines: its shortest edge, its curved fraction, and whether it moves vertices.
+    const RefineAttempt& variant(std::size_t k) const { return variants_[k]; }
     /// Attempt k, once finished; rethrows what it threw.
     const Attempt& get(std::size_t k) {
         runner_.wait(k);
         return results_[k];
     }
-    /// Attempt k is not needed (the other attempts after `first` in refine_given()).
-    void cancel(std::size_t k) {
-        if (k < results_.size()) runner_.cancel(k);
-    }
+    /// Attempt k is not needed.
+    void cancel(std::size_t k) { runner_.cancel(k); }
+    /// Whether attempt k turns off the vertex moves that the tactics allow.
+    bool without_moves(std::size_t k) const { return !variants_[k].vertex_moves && tactics_.move_vertices; }
 
 private:
-    // Made before runner_, whose threads read them at once.
-    static std::vector<RefineOptions> options_of_attempts(const RefineOptions& options, bool without_moves) {
-        std::vector<RefineOptions> all(without_moves ? 4 : 2, options);
-        for (std::size_t k = 2; k < all.size(); ++k) all[k].move_vertices = false;
+    static std::vector<RefineAttempt> variants_of(double min_edge_length, double curved_fraction, bool moves) {
+        std::vector<RefineAttempt> all;
+        for (bool with_moves : moves ? std::vector<bool>{true, false} : std::vector<bool>{false}) {
+            for (double curved : {curved_fraction, k_second_curved_fraction}) {
+                RefineAttempt v;
+                v.min_edge_length = min_edge_length;
+                v.curved_fraction = curved;
+                v.vertex_moves = with_moves;
+                all.push_back(v);
+            }
+        }
         return all;
     }
 
     void run(std::size_t k) {
-        RefineOptions options = options_[k];
-        if (progress_)
+        RefineOptions options = options_;
+        options.min_edge_length = variants_[k].min_edge_length;
+        if (options_.progress)
             options.progress = [this, k](const std::string& line) {
                 if (!runner_.waited_for(k)) return;
                 std::lock_guard<std::mutex> lock(progress_mutex_);
-                progress_(line);
+                options_.progress(line);
             };
+        detail::RefineTactics tactics = tactics_;
+        tactics.move_vertices = variants_[k].vertex_moves;
         Attempt& attempt = results_[k];
         attempt.g.emplace(given_);
         attempt.result = given_result_;
-        Refiner refiner(*attempt.g, options, attempt.result, k % 2 == 0 ? curved_fraction_ : k_second_curved_fraction,
+        Refiner refiner(*attempt.g, options, tactics, attempt.result, variants_[k].curved_fraction,
                         [this, k] { runner_.stop_if_cancelled(k); });
         refiner.bisect();
         refiner.raise_min_angle();
         refiner.count_corners_left();
     }
 
+    // Made before runner_, whose threads read them at once.
     const GeodesicTriangulation& given_;
     const RefineResult& given_result_;
-    const double curved_fraction_;  // that of the attempts with the options' own curved vertices (k even)
-    const std::function<void(const std::string&)>& progress_;  // the caller's own, which refine() reports to too
-    std::vector<RefineOptions> options_;  // attempt k's, but for their progress
-    std::vector<Attempt> results_;
+    const RefineOptions& options_;  // the caller's, with its progress, which refine() reports to too
+    const detail::RefineTactics tactics_;
+    const std::vector<RefineAttempt> variants_;
+    std::vector<Attempt> results_{variants_.size()};
     std::mutex progress_mutex_;
     detail::SpeculativeAttempts runner_;  // last: its threads start as it is made, and use all of the above
 };
 
+/// What an attempt after the first does otherwise, for the progress line that announces it.
+std::string how_it_differs(const RefineAttempt& attempt, const RefineAttempt& first) {
+    std::vector<std::string> parts;
+    if (attempt.min_edge_length != first.min_edge_length) parts.push_back("a shorter shortest edge");
+    if (attempt.curved_fraction == k_second_curved_fraction) parts.push_back("nearly every vertex of T curved");
+    else if (attempt.curved_fraction != first.curved_fraction) parts.push_back("more vertices of T curved");
+    if (attempt.vertex_moves != first.vertex_moves) parts.push_back("without vertex moves");
+    std::string text;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+    return text;
+}
+
 }  // namespace
 
-RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
+namespace detail {
+
+RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options, const RefineTactics& tactics) {
     const auto start = std::chrono::steady_clock::now();
     if (!(options.max_length >= 0.0) || !std::isfinite(options.max_length))
         throw InvalidInput("refine: the maximum length must be a finite number >= 0");
@@ -1525,169 +1553,116 @@ RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
         throw InvalidInput("refine: the minimum angle must be in [0, 35] degrees");
     if (!(options.min_edge_length >= 0.0) || !std::isfinite(options.min_edge_length))
         throw InvalidInput("refine: the minimum edge length must be a finite number >= 0");
-    RefineResult result;
+    RefineResult given_result;
     const ValidationReport before = validate(g);
-    result.valid_before = before.valid;
+    given_result.valid_before = before.valid;
     if (!before.valid)
         throw InvalidInput("refine: G is not valid (" + std::to_string(before.violations.size()) +
                            " violations); make it valid first (geotri-flip)");
-    result.angles_before = corner_angle_stats(g);
+    given_result.angles_before = corner_angle_stats(g);
     // Refinement's choices follow the numbering of G's edges and halfedges, which flips change: numbered as reading
     // its file numbers it, a G flipped in memory refines as geotri-refine refines geotri-flip's output.
-    g = renumbered_as_read(g);
-
-    // The G given, for the attempts after the first (a copy shares the polylines).
+    const GeodesicTriangulation given = renumbered_as_read(g);
     const double exempt_below = k_exempt_cone_factor * options.min_angle_deg * k_pi / 180.0;
-    const RefineResult given_result = result;
-    const GeodesicTriangulation given = g;
-    // Takes attempt `first` into `target` and `counts`, or, where it gave up on some triangles without reaching the
-    // cap, the better of it and the attempt after it, with nearly every vertex of T curved (fewer corners left, then
-    // the larger smallest corner that is not exempt); returns validate() of the one taken.
-    auto refine_given = [&](Attempts& attempts, std::size_t first, GeodesicTriangulation& target,
-                            RefineResult& counts) {
-        const Attempt& one = attempts.get(first);
-        target = *one.g;
-        counts = one.result;
-        if (options.min_angle_deg > 0.0 && counts.small_corners_left > 0 && !counts.vertex_cap_reached) {
-            if (options.progress)
+
+    // Which triangles refinement gives up on follows its choices all along the way, which the shortest edge, the
+    // vertices of T counted as curved and the vertex moves steer, and no choice is best everywhere. So where the
+    // best result so far gives up on some corners below the vertex cap, the G given is refined again, in groups of
+    // one shortest edge each (AttemptGroup), and the best result is kept:
+    // - with the options' shortest edge and the vertices of T curved by more than k_curved_fraction of the angle;
+    // - where no shortest edge is given, with k_finer_min_edge_fraction of T's mean edge;
+    // - with the shortest edge of the best so far and k_finer_curved_fraction, where at most k_few_corners_left
+    //   corners are left.
+    // Within each, with nearly every vertex of T curved too (armadillo_cgal, brain_conte69 and triceratops at 25
+    // degrees, horse at 30), and without vertex moves where at most k_few_corners_left corners are left: the ways out
+    // that refinement has where it is stuck were made for circumcentres alone, and moves can stand in their way
+    // (footbones at 30 degrees). Where more are left, circumcentres alone left more still on every mesh measured,
+    // and a sixth of the angle in every attempt left far more corners (gears 308 instead of 6 at 30 degrees), so
+    // those run only near the end. The shorter edge takes femur_cgal at 30 degrees from 21.8 to 28.4 degrees, and
+    // the sixth with it to 30.0; man at 30 degrees comes out better with the tenth.
+    std::vector<RefineAttempt> attempts;
+    std::size_t kept = 0;
+    RefineResult counts;
+    ValidationReport after;
+    auto gives_up = [&](bool few_left) {
+        return tactics.other_attempts && options.min_angle_deg > 0.0 && after.valid && counts.small_corners_left > 0 &&
+               !counts.vertex_cap_reached && (!few_left || counts.small_corners_left <= k_few_corners_left);
+    };
+    // Attempts run ahead of time on threads of their own where the propagations are too short to share
+    // (k_min_faces_for_threads); either way, the same attempts run and give the same results.
+    const int threads = options.min_angle_deg > 0.0 && g.fine().mesh.num_faces() < k_min_faces_for_threads
+                            ? detail::team_size(options.threads)
+                            : 1;
+    enum class Group { given_edge, shorter_edge, more_curved };
+    for (Group group : {Group::given_edge, Group::shorter_edge, Group::more_curved}) {
+        double min_edge = options.min_edge_length, curved = k_curved_fraction;
+        if (group == Group::shorter_edge) {
+            if (options.min_edge_length > 0.0 || !gives_up(false)) continue;
+            min_edge = k_finer_min_edge_fraction * mean_edge_length(g.fine().mesh);
+        } else if (group == Group::more_curved) {
+            if (!gives_up(true)) continue;
+            min_edge = attempts[kept].min_edge_length;
+            curved = k_finer_curved_fraction;
+        }
+        AttemptGroup runs(given, given_result, options, tactics, min_edge, curved, threads);
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            RefineAttempt record = runs.variant(k);
+            const bool first = attempts.empty();
+            if (!first && !gives_up(runs.without_moves(k) || group == Group::more_curved)) {
+                runs.cancel(k);
+                continue;
+            }
+            if (!first && options.progress)
                 options.progress("gave up on " + std::to_string(counts.small_corners_left) +
                                  (counts.small_corners_left == 1 ? " corner" : " corners") +
-                                 ": starting again with nearly every vertex of T counted as curved");
-            counts.second_attempt = true;
-            const Attempt* second = nullptr;
-            try {
-                second = &attempts.get(first + 1);
-            } catch (const NumericalError& error) {
-                // The second attempt only tries to do better: where it meets numerical trouble, the first stands.
-                counts.second_attempt_error = error.what();
-            }
-            // Only a valid second result can be better: the local checks may have let an invalid one through.
-            if (second && better_result(second->result, *second->g, counts, target, exempt_below)) {
-                ValidationReport second_report = validate(*second->g);
-                if (second_report.valid) {
-                    target = *second->g;
-                    counts = second->result;
-                    counts.second_attempt = counts.second_attempt_kept = true;
-                    return second_report;
+                                 ": refining again with " + how_it_differs(record, attempts.front()));
+            const Attempt* done = nullptr;
+            if (first) {
+                done = &runs.get(k);  // its numerical trouble is refine()'s
+            } else {
+                try {
+                    done = &runs.get(k);
+                } catch (const NumericalError& trouble) {
+                    // Another attempt only tries to do better: where it meets numerical trouble, the best stands.
+                    record.error = trouble.what();
                 }
             }
-        } else {
-            attempts.cancel(first + 1);
-        }
-        return validate(target);
-    };
-    // On a small T each attempt runs on one thread (k_min_faces_for_threads): those that may be needed then start
-    // together, on threads of their own.
-    const int attempt_threads = options.min_angle_deg > 0.0 && g.fine().mesh.num_faces() < k_min_faces_for_threads
-                                    ? detail::team_size(options.threads)
-                                    : 1;
-    // Refines the G given once more with `again` (called with a copy of the G given and of its counts, returning
-    // validate() of its result), which only tries to do better: where that meets numerical trouble, the result in
-    // `target` stands and `error` says why; where it ends valid and better_result(), it replaces target, counts and
-    // after. Sets the `tried` and `kept` flags of the counts that stand.
-    auto keep_if_better = [&](auto again, GeodesicTriangulation& target, RefineResult& counts, ValidationReport& after,
-                              bool RefineResult::*tried, bool RefineResult::*kept, std::string RefineResult::*error) {
-        GeodesicTriangulation other = given;
-        RefineResult other_result = given_result;
-        std::optional<ValidationReport> other_report;
-        try {
-            other_report = again(other, other_result);
-        } catch (const NumericalError& trouble) {
-            counts.*error = trouble.what();
-        }
-        counts.*tried = true;
-        if (other_report && other_report->valid &&
-            better_result(other_result, other, counts, target, exempt_below)) {
-            target = std::move(other);
-            counts = other_result;
-            after = *other_report;
-            counts.*tried = counts.*kept = true;
-        }
-    };
-    // Refines the G given with `with` (options, or those with another shortest edge) and `curved_fraction` (for the
-    // first attempt and the one without moves) into `target` and `counts`; returns validate() of the result.
-    auto refine_with = [&](const RefineOptions& with, double curved_fraction, GeodesicTriangulation& target,
-                           RefineResult& counts) {
-        ValidationReport after;
-        {
-            Attempts attempts(given, given_result, with, curved_fraction, with.move_vertices, attempt_threads);
-            after = refine_given(attempts, 0, target, counts);
-            // Given up on a few triangles with vertex moves, not cascading into the cap: once more without them,
-            // and the better kept. The ways out that refinement has where it is stuck (a longer cap when nearly
-            // done, removing the vertices it added) were made for circumcentres alone, and moves can stand in their
-            // way: at 30 degrees, footbones reaches the angle only without moves. Where more are left,
-            // circumcentres alone left more still on every mesh measured (man, gears and skull_thing74168 at 25
-            // degrees, femur_cgal at 30).
-            if (with.move_vertices && with.min_angle_deg > 0.0 && after.valid && counts.small_corners_left > 0 &&
-                counts.small_corners_left <= k_few_corners_left && !counts.vertex_cap_reached) {
-                if (options.progress) options.progress("corners left with vertex moves: starting again without them");
-                keep_if_better(
-                    [&](GeodesicTriangulation& other, RefineResult& other_counts) {
-                        return refine_given(attempts, 2, other, other_counts);
-                    },
-                    target, counts, after, &RefineResult::without_moves_tried, &RefineResult::without_moves_kept,
-                    &RefineResult::without_moves_error);
+            if (done) {
+                record.small_corners_left = done->result.small_corners_left;
+                record.min_angle_deg = corner_angle_stats(*done->g).min_deg;
+                if (first) {
+                    g = *done->g;
+                    counts = done->result;
+                    after = validate(g);
+                } else if (better_result(done->result, *done->g, counts, g, exempt_below)) {
+                    // Only a valid result can be better: the local checks may have let an invalid one through.
+                    ValidationReport report = validate(*done->g);
+                    if (report.valid) {
+                        g = *done->g;
+                        counts = done->result;
+                        after = std::move(report);
+                        kept = attempts.size();
+                    }
+                }
             }
-        }  // the attempts not needed stop here
-        return after;
-    };
-    ValidationReport after = refine_with(options, k_curved_fraction, g, result);
-    // The options with a shortest edge of k_finer_min_edge_fraction of T's mean edge, for the retries below.
-    auto with_finer_edge = [&] {
-        RefineOptions finer = options;
-        finer.min_edge_length = k_finer_min_edge_fraction * mean_edge_length(g.fine().mesh);
-        return finer;
-    };
-    // Refinement to an angle gave up on some triangles of a valid result without reaching the cap, on a T small
-    // enough for the retries below (each a whole refinement again), as the result stands when asked.
-    auto corners_left_on_small_t = [&] {
-        return options.min_angle_deg > 0.0 && after.valid && result.small_corners_left > 0 &&
-               !result.vertex_cap_reached && g.fine().mesh.num_faces() < k_min_faces_for_threads;
-    };
-    // Given up on some triangles without reaching the cap, with the default shortest edge: once more with a shorter
-    // one, and the better kept. Which triangles refinement gives up on follows its choices all along the way, so
-    // neither edge is better everywhere (at 30 degrees, with a twentieth alone, skull_thing74168 reaches the angle
-    // and femur_cgal and gears end at 28.4 and 27.1 degrees instead of 21.8 and 13.1, but man at 1.1 instead of
-    // 18.1). Not on a T of k_min_faces_for_threads faces or more, where the attempts cannot run side by side and
-    // each takes seconds: man at 25 degrees would take 6.0 -> 13.1 s for 10 -> 8 corners left.
-    if (options.min_edge_length == 0.0 && corners_left_on_small_t()) {
-        if (options.progress) options.progress("corners left: starting again with a shorter shortest edge");
-        const RefineOptions finer = with_finer_edge();
-        keep_if_better([&](GeodesicTriangulation& other, RefineResult& other_counts) {
-                           return refine_with(finer, k_curved_fraction, other, other_counts);
-                       },
-                       g, result, after, &RefineResult::finer_min_edge_tried, &RefineResult::finer_min_edge_kept,
-                       &RefineResult::finer_min_edge_error);
+            attempts.push_back(record);
+        }
     }
-    // Still a few corners left (nearly there, not cascading): once more, with the shortest edge of the result that
-    // stands and more vertices of T counted as curved, so that coarse vertices go onto them sooner, and the better
-    // kept. Like the shortest edge, which vertices count as curved steers refinement all along the way, and no
-    // fraction is better everywhere: at 30 degrees, a sixth with a twentieth takes femur_cgal from 28.4 degrees with
-    // 2 corners left to 30.0 (a sixth with a tenth leaves it as it was); a sixth in every attempt would leave gears
-    // with 308 corners left instead of 6, man with 18 instead of 15 and lucy_100k with 389 instead of 4, and
-    // fractions of a fifth to a half left femur_cgal below the angle. Only where at most k_few_corners_left corners
-    // are left, on a T of under k_min_faces_for_threads faces, as above.
-    if (corners_left_on_small_t() && result.small_corners_left <= k_few_corners_left) {
-        if (options.progress) options.progress("a few corners left: starting again with more vertices of T curved");
-        // With the shortest edge of the result that stands: a twentieth of the mean edge where that did better.
-        const RefineOptions standing = result.finer_min_edge_kept ? with_finer_edge() : options;
-        const bool finer_tried = result.finer_min_edge_tried, finer_kept = result.finer_min_edge_kept;
-        const std::string finer_error = result.finer_min_edge_error;
-        keep_if_better([&](GeodesicTriangulation& other, RefineResult& other_counts) {
-                           return refine_with(standing, k_finer_curved_fraction, other, other_counts);
-                       },
-                       g, result, after, &RefineResult::finer_curved_tried, &RefineResult::finer_curved_kept,
-                       &RefineResult::finer_curved_error);
-        result.finer_min_edge_tried = finer_tried;
-        result.finer_min_edge_kept = finer_kept;
-        result.finer_min_edge_error = finer_error;
-    }
+    attempts[kept].kept = true;
+    RefineResult result = counts;
+    result.attempts = std::move(attempts);
     result.valid_after = after.valid;
     if (!after.valid) result.remaining = after.violations;
     result.angles_after = corner_angle_stats(g);
     for (EdgeHandle e : g.coarse().edges()) result.longest_edge = std::max(result.longest_edge, g.length(e));
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
+}
+
+}  // namespace detail
+
+RefineResult refine(GeodesicTriangulation& g, const RefineOptions& options) {
+    return detail::refine(g, options, detail::RefineTactics{});
 }
 
 }  // namespace geotri
