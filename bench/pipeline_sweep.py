@@ -5,13 +5,18 @@ minimum corner angle) and at the end (with the conditions that failed), and the 
 writing included. G is refined only when flip made it valid.
 
     bench/pipeline_sweep.py [--faces N | --coarsest] [--min-angle A] [--threads N] [--timeout S] [--build DIR]
-                            [--data DIR] [--keep DIR] [MESH ...]
+                            [--data DIR] [--keep DIR] [--require [--open MESH ...]] [MESH ...]
 
 Where the topology stops decimation above N faces, the mesh is what geotri-decimate gives: that coarsest mesh, or
 a finer one where the coarsest one's geodesics tangle (it backs off). --coarsest decimates every mesh as coarse as
 its topology allows (geotri-decimate --coarsest), as a target of 4 faces did before the back-off. The outputs
 go to a temporary folder that is removed at the end, or with --keep to DIR, where they stay (MESH.off, .paths,
 .gtri, .flip.gtri, .refine.gtri, .vtu, named by the mesh's file name without its extension).
+
+With --require (the test sweep of CI), it exits 1 unless every mesh is valid after flip and at the end, reaches the
+angle with no corner left below it but at cones of T that force one, and its overlay covers T, and unless every mesh
+named by --open (relative to --data: meshes with a boundary) is refused by geotri-decimate; stderr names the meshes
+that fall short. Without meshes (no --data folder), it says so and exits 77, which ctest counts as skipped.
 """
 import argparse
 import contextlib
@@ -47,19 +52,24 @@ def sweep_one(mesh, options, work):
     threads = ["--threads", str(options.threads)] if options.threads else []
     times = {}
     row = [name]
+    short = []  # what --require asks that this mesh does not meet
 
-    def stop(why):
+    def stop(why, ok=False):
         cells = row + [why] + ["-"] * (6 - len(row))
         cells += [f"{times[t]:.2f}" if t in times else "-" for t in STAGES]
         cells.append(f"{sum(times.values()):.2f}")
-        return "| " + " | ".join(cells) + " |"
+        if not ok:
+            short.append(why)
+        return "| " + " | ".join(cells) + " |", short
 
     target = ["--coarsest"] if options.coarsest else ["--faces", str(options.faces)]
     code, dec, times["decimate"], err = run("decimate", [str(mesh), "-o", f"{stem}.off", "--paths", f"{stem}.paths",
                                                         *target],
                                             options.build)
     if code != 0:
-        return stop(f"refused: {err.splitlines()[-1] if err else code}")
+        return stop(f"refused: {err.splitlines()[-1] if err else code}", ok=name in options.open and code == 1)
+    if name in options.open:
+        short.append("a mesh with a boundary was not refused")
     row += [str(dec["faces"]), str(dec["coarse_faces"])]
     code, _, times["trace"], err = run("trace", [str(mesh), f"{stem}.off", "--paths", f"{stem}.paths", "-o",
                                                      f"{stem}.gtri", *threads],
@@ -77,6 +87,8 @@ def sweep_one(mesh, options, work):
         return stop(f"flip failed: {err}")
     row.append(("valid" if flp["valid"] else "INVALID") +
                f", {flp['min_corner_angle_deg_before']:.1f}° → {flp['min_corner_angle_deg']:.1f}°")
+    if not flp["valid"]:
+        short.append("invalid after flip")
     final = f"{stem}.flip.gtri"
     if flp["valid"] and options.min_angle > 0:
         code, ref, times["refine"], err = run("refine", [final, "-o", f"{stem}.refine.gtri", "--min-angle",
@@ -87,6 +99,8 @@ def sweep_one(mesh, options, work):
                    (f", {ref['small_corners_left']} left" if ref["small_corners_left"] else "") +
                    (f", {ref['wide_corners_left']} above 180°" if ref.get("wide_corners_left") else "") +
                    ("" if ref["valid"] else ", INVALID"))
+        if ref["small_corners_left"]:
+            short.append(f"{ref['small_corners_left']} corners below {options.min_angle:g}°")
         final = f"{stem}.refine.gtri"
     else:
         row.append("-")
@@ -99,7 +113,7 @@ def sweep_one(mesh, options, work):
     result = verdict_of(chk)
     if chk["valid"] and ov["relative_area_error"] > 1e-9:
         result += f", AREA MISMATCH {ov['relative_area_error']:.1e}"
-    return stop(result)
+    return stop(result, ok=result == "valid")
 
 
 STAGES = ["decimate", "trace", "flip", "refine", "check", "overlay"]
@@ -121,13 +135,18 @@ def main():
     parser.add_argument("--build", type=pathlib.Path, default=ROOT / "build")
     parser.add_argument("--data", type=pathlib.Path, default=ROOT.parent / "shared" / "data")
     parser.add_argument("--keep", type=pathlib.Path, help="write the outputs to this folder and keep them")
+    parser.add_argument("--require", action="store_true",
+                        help="exit 1 unless every mesh is valid after flip and at the end, and reaches the angle")
+    parser.add_argument("--open", nargs="+", default=[], metavar="MESH",
+                        help="with --require: meshes (relative to --data) that geotri-decimate must refuse")
     options = parser.parse_args()
     options.data = options.data.resolve()
     TIMEOUT = options.timeout
     meshes = options.meshes or sorted(p for p in options.data.rglob("*")
                                       if p.suffix in (".off", ".obj", ".ply", ".stl") and p.is_file())
     if not meshes:
-        sys.exit(f"pipeline_sweep.py: no meshes under {options.data}")
+        print(f"pipeline_sweep.py: no meshes under {options.data}: nothing to sweep", file=sys.stderr)
+        sys.exit(77 if options.require else 1)
     if options.keep:
         # The outputs are named after the meshes (MESH.off among them): never in a folder that holds one.
         if any(mesh.resolve().parent == options.keep.resolve() for mesh in meshes):
@@ -138,9 +157,18 @@ def main():
     print("|---|---:|---:|---|---|---|---|" + "---:|" * (len(STAGES) + 1))
     folder = (contextlib.nullcontext(options.keep) if options.keep
               else tempfile.TemporaryDirectory(prefix="geotri-sweep-"))
+    falling_short = []
     with folder as work:
         for mesh in meshes:
-            print(sweep_one(mesh.resolve(), options, pathlib.Path(work)), flush=True)
+            row, short = sweep_one(mesh.resolve(), options, pathlib.Path(work))
+            print(row, flush=True)
+            if short:
+                falling_short.append(f"{mesh}: {'; '.join(short)}")
+    if options.require and falling_short:
+        print(f"pipeline_sweep.py: {len(falling_short)} of {len(meshes)} meshes fall short:", file=sys.stderr)
+        for line in falling_short:
+            print("  " + line, file=sys.stderr)
+        sys.exit(1)
 
 
 if __name__ == "__main__":
