@@ -63,37 +63,7 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
     halfedges_.resize(nh);
     for (int h = 0; h < nh; ++h) halfedges_[h].tail = triangles_[h / 3][h % 3];
 
-    // Twins: sort the halfedges by their undirected edge, then pair them up.
-    std::vector<std::uint64_t> key(nh);
-    for (int h = 0; h < nh; ++h) {
-        auto a = static_cast<std::uint64_t>(tail(h));
-        auto b = static_cast<std::uint64_t>(head(h));
-        key[h] = a < b ? (a << 32 | b) : (b << 32 | a);
-    }
-    std::vector<int> order(nh);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int x, int y) { return key[x] < key[y] || (key[x] == key[y] && x < y); });
-    for (int i = 0; i < nh;) {
-        int j = i + 1;
-        while (j < nh && key[order[j]] == key[order[i]]) ++j;
-        const int h = order[i];
-        if (j - i > 2)
-            throw TopologyError("edge " + edge_name(tail(h), head(h)) + " is shared by " + std::to_string(j - i) +
-                                " faces (non-manifold)");
-        if (j - i == 2) {
-            const int g = order[i + 1];
-            if (tail(h) == tail(g))
-                throw TopologyError("faces " + std::to_string(face_of(h)) + " and " + std::to_string(face_of(g)) +
-                                    " are inconsistently oriented at edge " + edge_name(tail(h), head(h)));
-            halfedges_[h].twin = g;
-            halfedges_[g].twin = h;
-        } else {
-            ++num_boundary_halfedges_;
-        }
-        i = j;
-    }
-
-    // Outgoing halfedges per vertex (CSR), and one representative that starts the fan on a boundary.
+    // Outgoing halfedges per vertex (CSR, each vertex's in halfedge order), and their heads.
     outgoing_offset_.assign(nv + 1, 0);
     for (int h = 0; h < nh; ++h) ++outgoing_offset_[tail(h) + 1];
     for (int v = 0; v < nv; ++v) outgoing_offset_[v + 1] += outgoing_offset_[v];
@@ -104,6 +74,56 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
         outgoing_head_.resize(nh);
         for (int i = 0; i < nh; ++i) outgoing_head_[i] = head(outgoing_list_[i]);
     }
+
+    // Twins: the halfedges of edge {a, b} are those from a to b and from b to a, found in the two vertices' lists
+    // (a few each) rather than by sorting all halfedges by edge, which took most of the time of loading a large T.
+    // Where an edge has more than two halfedges, or two in the same direction, the edge with the smallest
+    // (smaller vertex, larger vertex) is the one reported, its halfedges in index order.
+    std::uint64_t worst_key = std::numeric_limits<std::uint64_t>::max();
+    int worst_first = -1, worst_second = -1, worst_count = 0;
+    for (int h = 0; h < nh; ++h) {
+        const int a = tail(h), b = head(h);
+        int count = 0, first = -1, second = -1, reverse = -1;
+        auto visit = [&](int from, int to, bool same_direction) {
+            for (int i = outgoing_offset_[from]; i < outgoing_offset_[from + 1]; ++i) {
+                if (outgoing_head_[i] != to) continue;
+                const int g = outgoing_list_[i];
+                ++count;
+                if (!same_direction) reverse = g;
+                if (first < 0 || g < first) {
+                    second = first;
+                    first = g;
+                } else if (second < 0 || g < second) {
+                    second = g;
+                }
+            }
+        };
+        visit(a, b, true);
+        visit(b, a, false);
+        if (count == 2 && reverse >= 0) {
+            halfedges_[h].twin = reverse;
+        } else if (count == 1) {
+            ++num_boundary_halfedges_;
+        } else if (h == first) {  // each bad edge once
+            const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
+            const std::uint64_t key = lo << 32 | hi;
+            if (key < worst_key) {
+                worst_key = key;
+                worst_first = first;
+                worst_second = second;
+                worst_count = count;
+            }
+        }
+    }
+    if (worst_first >= 0) {
+        const int h = worst_first, g = worst_second;
+        if (worst_count > 2)
+            throw TopologyError("edge " + edge_name(tail(h), head(h)) + " is shared by " + std::to_string(worst_count) +
+                                " faces (non-manifold)");
+        throw TopologyError("faces " + std::to_string(face_of(h)) + " and " + std::to_string(face_of(g)) +
+                            " are inconsistently oriented at edge " + edge_name(tail(h), head(h)));
+    }
+
     outgoing_.assign(nv, -1);
     boundary_vertex_.assign(nv, 0);
     for (int h = 0; h < nh; ++h) {
