@@ -41,6 +41,8 @@ def make_mesh(options):
         return mesh
     options.work.mkdir(parents=True, exist_ok=True)
     subdivide = options.build / "bench" / "geotri-bench-subdivide"
+    if not subdivide.exists():
+        sys.exit(f"large_pipeline.py: {subdivide} not found: build with the benchmarks (GEOTRI_BUILD_BENCH=ON)")
     once = options.work / f"{options.mesh.stem}_once.ply"
     decimated = options.work / f"{options.mesh.stem}_{options.faces // 16}.off"
     steps = [[subdivide, options.mesh, once, 1],
