@@ -11,7 +11,6 @@ to N/16 faces by geotri-decimate, then Loop-subdivided twice, for N faces (defau
 benchmarks (GEOTRI_BUILD_BENCH, on by default).
 """
 import argparse
-import json
 import pathlib
 import subprocess
 import sys
@@ -21,17 +20,18 @@ import geotri_tools
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
-def timed(command):
-    """Runs `command` under /usr/bin/time; returns (exit code, stdout, stderr, wall seconds, peak resident bytes)."""
-    done = subprocess.run(["/usr/bin/time", "-f", "@@time %e %M", *map(str, command)], capture_output=True,
-                          text=True)
+def timed(tool, args, build):
+    """Runs geotri-TOOL with --json --quiet under /usr/bin/time; returns (exit code, parsed JSON or None, stderr,
+    wall seconds, peak resident bytes)."""
+    done = subprocess.run(["/usr/bin/time", "-f", "@@time %e %M", *geotri_tools.command(tool, args, build)],
+                          capture_output=True, text=True)
     lines = done.stderr.splitlines()
     marks = [line for line in lines if line.startswith("@@time ")]
     if not marks:
-        sys.exit(f"large_pipeline.py: no timing from {command[0]}: {done.stderr.strip()}")
+        sys.exit(f"large_pipeline.py: no timing from geotri-{tool}: {done.stderr.strip()}")
     _, wall, kilobytes = marks[-1].split()
     stderr = "\n".join(line for line in lines if not line.startswith("@@time "))
-    return done.returncode, done.stdout, stderr, float(wall), int(kilobytes) * 1024
+    return done.returncode, geotri_tools.summary_of(done.stdout), stderr, float(wall), int(kilobytes) * 1024
 
 
 def make_mesh(options):
@@ -84,9 +84,8 @@ def main():
     print("|---|---:|---:|---|")
     total, peak = 0.0, 0
     for tool, args in steps:
-        code, out, err, wall, memory = timed([geotri_tools.tool_path(options.build, tool), "--json", "--quiet",
-                                              *args])
-        summary = json.loads(out) if out.strip() else {}
+        code, summary, err, wall, memory = timed(tool, args, options.build)
+        summary = summary or {}
         if tool == "decimate":
             result = f"{summary.get('coarse_faces')} coarse faces from {summary.get('faces')}"
         elif tool in ("flip", "check"):

@@ -5,7 +5,7 @@ minimum corner angle) and at the end (with the conditions that failed), and the 
 writing included. G is refined only when flip made it valid.
 
     bench/pipeline_sweep.py [--faces N | --coarsest] [--min-angle A] [--threads N] [--timeout S] [--build DIR]
-                            [--data DIR] [--keep DIR] [--require [--open MESH ...]] [MESH ...]
+                            [--data DIR] [--keep DIR] [--require [--open MESH]...] [MESH ...]
 
 Where the topology stops decimation above N faces, the mesh is what geotri-decimate gives: that coarsest mesh, or
 a finer one where the coarsest one's geodesics tangle (it backs off). --coarsest decimates every mesh as coarse as
@@ -137,8 +137,8 @@ def main():
     parser.add_argument("--keep", type=pathlib.Path, help="write the outputs to this folder and keep them")
     parser.add_argument("--require", action="store_true",
                         help="exit 1 unless every mesh is valid after flip and at the end, and reaches the angle")
-    parser.add_argument("--open", nargs="+", default=[], metavar="MESH",
-                        help="with --require: meshes (relative to --data) that geotri-decimate must refuse")
+    parser.add_argument("--open", action="append", default=[], metavar="MESH",
+                        help="with --require: a mesh (relative to --data) that geotri-decimate must refuse; repeatable")
     options = parser.parse_args()
     options.data = options.data.resolve()
     TIMEOUT = options.timeout

@@ -82,6 +82,7 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
     std::uint64_t worst_key = std::numeric_limits<std::uint64_t>::max();
     int worst_first = -1, worst_second = -1, worst_count = 0;
     for (int h = 0; h < nh; ++h) {
+        if (halfedges_[h].twin >= 0) continue;  // paired from its twin, which came first
         const int a = tail(h), b = head(h);
         int count = 0, first = -1, second = -1, reverse = -1;
         auto visit = [&](int from, int to, bool same_direction) {
@@ -102,6 +103,7 @@ Mesh::Mesh(std::vector<Eigen::Vector3d> positions, std::vector<std::array<int, 3
         visit(b, a, false);
         if (count == 2 && reverse >= 0) {
             halfedges_[h].twin = reverse;
+            halfedges_[reverse].twin = h;
         } else if (count == 1) {
             ++num_boundary_halfedges_;
         } else if (h == first) {  // each bad edge once

@@ -1522,7 +1522,7 @@ private:
     const RefineOptions& options_;  // the caller's, with its progress, which refine() reports to too
     const detail::RefineTactics tactics_;
     const std::vector<RefineAttempt> variants_;
-    std::vector<Attempt> results_{variants_.size()};
+    std::vector<Attempt> results_ = std::vector<Attempt>(variants_.size());
     std::mutex progress_mutex_;
     detail::SpeculativeAttempts runner_;  // last: its threads start as it is made, and use all of the above
 };
