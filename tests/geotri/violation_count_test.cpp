@@ -53,6 +53,24 @@ int validated(const GeodesicTriangulation& g) {
     return r.violation_count[0] + r.violation_count[1] + r.violation_count[2];
 }
 
+/// The violations of a report, each as its condition and the coarse elements that it names, sorted: what
+/// untangling reads of them.
+std::vector<std::string> named(const ValidationReport& report) {
+    std::vector<std::string> out;
+    for (const Violation& v : report.violations) {
+        std::string line = "condition " + std::to_string(v.condition);
+        for (const auto& [what, list] : {std::make_pair("vertices", &v.coarse_vertices),
+                                         std::make_pair("edges", &v.coarse_edges),
+                                         std::make_pair("faces", &v.coarse_faces)}) {
+            line += std::string("; ") + what;
+            for (int i : *list) line += " " + std::to_string(i);
+        }
+        out.push_back(line);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
 int uniform(std::mt19937& random, int n) { return std::uniform_int_distribution<int>(0, n - 1)(random); }
 
 /// A random fine vertex near v's location: one of nearby_fine_vertices(), else any.
@@ -161,8 +179,9 @@ std::string random_change(GeodesicTriangulation& g, std::mt19937& random, geodes
 }
 
 /// `trials` trial copies of g, each changed by one to three random changes, counted from what changed and by
-/// validate(). One trial in `keep_every` becomes G (whatever its count), so that G wanders and tangles, and the
-/// count is made again from it. Returns the number of trials whose count went down, for the caller to see that
+/// validate(). One trial in `keep_every` becomes G (whatever its count), so that G wanders and tangles, and its
+/// count is made from the one before and what changed, as untangling makes it; its report must name what
+/// validate() names. Returns the number of trials whose count went down, for the caller to see that
 /// both ways were exercised.
 int check_random_trials(GeodesicTriangulation g, int trials, int keep_every, unsigned seed, const std::string& name) {
     std::mt19937 random(seed);
@@ -181,16 +200,23 @@ int check_random_trials(GeodesicTriangulation g, int trials, int keep_every, uns
             if (!change.empty()) changes += (changes.empty() ? "" : ", ") + change;
         }
         const int expected = validated(trial);
-        const int counted = count.count(trial, verdicts);
+        detail::ViolationCount::Changed changed;
+        const int counted = count.count(trial, verdicts, changed);
+        EXPECT_EQ(count.count(trial, verdicts), counted);
         EXPECT_EQ(counted, expected) << name << ", trial " << k << " (" << changes << "): G has " << g_count;
         if (counted != expected) return lower;  // one failure tells it; what follows would only repeat it
         (expected < g_count ? lower : higher) += 1;
         if (uniform(random, keep_every) == 0) {
+            // Made from what changed, as untangling keeps a trial: the trials after it are counted from there.
+            count = detail::ViolationCount(count, trial, verdicts);
+            verdicts.advance(trial, changed.edges);
             g = trial;
-            verdicts = detail::PolylineVerdicts(g, verdicts);
-            count = detail::ViolationCount(g, verdicts);
             g_count = expected;
-            EXPECT_EQ(count.count(), g_count) << name << ", kept trial " << k;
+            EXPECT_EQ(count.count(), g_count) << name << ", kept trial " << k << " (" << changes << ")";
+            const std::vector<std::string> oracle = named(validate(g, ValidationOptions{false}));
+            EXPECT_EQ(named(count.report()), oracle) << name << ", kept trial " << k << " (" << changes << ")";
+            EXPECT_EQ(named(detail::validate(g, ValidationOptions{false}, verdicts)), oracle)
+                << name << ", kept trial " << k << " (" << changes << "): with the verdicts advanced";
             ++kept;
         }
     }

@@ -5,6 +5,7 @@
 
 #include <geodesic/mesh.h>
 #include <geotri/geodesic_triangulation.h>
+#include <geotri/validate.h>
 
 #include "core/tolerances.h"
 
@@ -89,5 +90,23 @@ struct VertexCorners {
 };
 VertexCorners vertex_corners(const geodesic::Mesh& mesh, const SurfacePoint& location,
                              const std::vector<double>& polar_angles);
+
+/// A violation of condition 2 at coarse vertex c, whose out halfedges `out` gave corners whose first that is not
+/// positive is `first_bad` (VertexCorners), with the coarse elements that validate() names: the edges and face of
+/// that corner, else (-1) every edge and face around c. Its `what` is empty.
+Violation corner_violation(const CoarseMesh& coarse, int c, const std::vector<OpenMesh::HalfedgeHandle>& out,
+                           int first_bad);
+
+/// One side of a meeting of condition 3: coarse edge `index` from coarse vertex `from` to `to`, or coarse vertex
+/// `index` (is_vertex; from and to unused).
+struct MeetingSide {
+    bool is_vertex;
+    int index;
+    int from, to;
+};
+
+/// A violation of condition 3 where a and b meet (a == b: an edge that meets itself), with the coarse elements
+/// that validate() names: the edges, and the vertices at their ends or met, sorted. Its `what` is empty.
+Violation meeting_violation(const MeetingSide& a, const MeetingSide& b);
 
 }  // namespace geotri::detail

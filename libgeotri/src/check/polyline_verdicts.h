@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 namespace geotri::detail {
 
@@ -22,6 +23,11 @@ public:
     /// The verdicts on g's polylines, taken from `earlier` where it has them. Keeps g's polylines alive, so that
     /// no other polyline can take the address of one of them.
     PolylineVerdicts(const GeodesicTriangulation& g, const PolylineVerdicts& earlier);
+
+    /// Makes these the verdicts of g, a copy of the G that they are for which differs from it only at the coarse
+    /// `edges` (indices in either, as ViolationCount::Changed lists them): as PolylineVerdicts(g, *this), from
+    /// those edges alone.
+    void advance(const GeodesicTriangulation& g, const std::vector<int>& edges);
 
     /// Whether the polyline of g's edge e is straight and as long as recorded: empty when it is, else why not
     /// (as validate() says it); null when it is not known here. Only polylines whose points are apart and
@@ -44,6 +50,9 @@ private:
         std::shared_ptr<const CrossingItems> crossings;
     };
     const Verdict* verdict(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) const;
+    /// Files the verdict on the polyline of g's edge e `into`: this one's where known, else made, where it can be.
+    void find_or_make(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e,
+                      std::unordered_map<const Polyline*, Verdict>& into) const;
     std::optional<GeodesicTriangulation> kept_;
     std::unordered_map<const Polyline*, Verdict> verdicts_;
 };

@@ -178,6 +178,43 @@ VertexCorners vertex_corners(const Mesh& mesh, const SurfacePoint& location, con
     return out;
 }
 
+Violation corner_violation(const CoarseMesh& coarse, int c, const std::vector<OpenMesh::HalfedgeHandle>& out,
+                           int first_bad) {
+    Violation v;
+    v.condition = 2;
+    v.coarse_vertices = {c};
+    auto name = [&](OpenMesh::HalfedgeHandle h) {
+        v.coarse_edges.push_back(coarse.edge_handle(h).idx());
+        if (coarse.face_handle(h).is_valid()) v.coarse_faces.push_back(coarse.face_handle(h).idx());
+    };
+    if (first_bad >= 0) {
+        const std::size_t i = static_cast<std::size_t>(first_bad);
+        name(out[i]);
+        v.coarse_edges.push_back(coarse.edge_handle(out[(i + 1) % out.size()]).idx());
+    } else {
+        for (OpenMesh::HalfedgeHandle h : out) name(h);
+    }
+    return v;
+}
+
+Violation meeting_violation(const MeetingSide& a, const MeetingSide& b) {
+    Violation v;
+    v.condition = 3;
+    for (const MeetingSide* s : {&a, &b}) {
+        if (s->is_vertex) {
+            v.coarse_vertices.push_back(s->index);
+            continue;
+        }
+        if (s == &b && !a.is_vertex && a.index == b.index) continue;  // an edge that meets itself
+        v.coarse_edges.push_back(s->index);
+        v.coarse_vertices.insert(v.coarse_vertices.end(), {s->from, s->to});
+    }
+    std::sort(v.coarse_edges.begin(), v.coarse_edges.end());
+    std::sort(v.coarse_vertices.begin(), v.coarse_vertices.end());
+    v.coarse_vertices.erase(std::unique(v.coarse_vertices.begin(), v.coarse_vertices.end()), v.coarse_vertices.end());
+    return v;
+}
+
 }  // namespace detail
 
 namespace {
@@ -329,28 +366,19 @@ void Validator::check_corners() {
         const int first_bad = corners.first_bad;
         const long winding = corners.winding;
 
-        Violation v;
-        v.condition = 2;
-        v.coarse_vertices = {c.idx()};
+        Violation v = detail::corner_violation(coarse_, c.idx(), out, first_bad);
         const std::string name = "coarse vertex " + std::to_string(c.idx());
         if (first_bad >= 0) {
             const auto h0 = out[static_cast<std::size_t>(first_bad)];
             const auto h1 = out[(static_cast<std::size_t>(first_bad) + 1) % n];
-            const int f = coarse_.face_handle(h0).idx();
-            v.what = name + ": the corner of coarse face " + std::to_string(f) + " between coarse edges " +
-                     std::to_string(coarse_.edge_handle(h0).idx()) + " and " +
+            v.what = name + ": the corner of coarse face " + std::to_string(coarse_.face_handle(h0).idx()) +
+                     " between coarse edges " + std::to_string(coarse_.edge_handle(h0).idx()) + " and " +
                      std::to_string(coarse_.edge_handle(h1).idx()) + " is not positive (geodesics in the wrong " +
                      "order or overlapping)";
-            v.coarse_edges = {coarse_.edge_handle(h0).idx(), coarse_.edge_handle(h1).idx()};
-            if (f >= 0) v.coarse_faces = {f};
             if (winding != 1) v.what += "; they wind " + std::to_string(winding) + " times around it";
         } else {
             v.what = name + ": its geodesics wind " + std::to_string(winding) + " times around it (corner angles " +
                      "sum to " + degrees(sum) + ", cone angle " + degrees(theta) + ")";
-            for (const auto& hh : out) {
-                v.coarse_edges.push_back(coarse_.edge_handle(hh).idx());
-                if (coarse_.face_handle(hh).is_valid()) v.coarse_faces.push_back(coarse_.face_handle(hh).idx());
-            }
         }
         add(std::move(v));
     }
@@ -524,28 +552,21 @@ void Validator::check_crossings() {
         i = j;
     }
 
+    auto side = [&](int feature) {
+        return feature < ne ? detail::MeetingSide{false, feature, ends_[feature][0], ends_[feature][1]}
+                            : detail::MeetingSide{true, feature - ne, -1, -1};
+    };
     for (const auto& [pair, where] : meetings_) {
-        Violation v;
-        v.condition = 3;
         const auto [a, b] = pair;
-        if (a < ne && b < ne) {
+        Violation v = detail::meeting_violation(side(a), side(b));
+        if (a < ne && b < ne)
             v.what = a == b ? edge_name(a) + " meets itself " + where
                             : edge_name(a) + " and " + edge_name(b) + " meet " + where;
-            v.coarse_edges = a == b ? std::vector<int>{a} : std::vector<int>{a, b};
-            v.coarse_vertices = {ends_[a][0], ends_[a][1]};
-            if (a != b) v.coarse_vertices.insert(v.coarse_vertices.end(), {ends_[b][0], ends_[b][1]});
-        } else if (a < ne) {
+        else if (a < ne)
             v.what = edge_name(a) + " passes through coarse vertex " + std::to_string(b - ne) + " " + where;
-            v.coarse_edges = {a};
-            v.coarse_vertices = {b - ne, ends_[a][0], ends_[a][1]};
-        } else {
+        else
             v.what = "coarse vertices " + std::to_string(a - ne) + " and " + std::to_string(b - ne) +
                      " are at the same point " + where;
-            v.coarse_vertices = {a - ne, b - ne};
-        }
-        std::sort(v.coarse_vertices.begin(), v.coarse_vertices.end());
-        v.coarse_vertices.erase(std::unique(v.coarse_vertices.begin(), v.coarse_vertices.end()),
-                                v.coarse_vertices.end());
         add(std::move(v));
     }
 }
@@ -650,24 +671,41 @@ std::string shape_defect(const Mesh& mesh, const Polyline& path, double recorded
 }
 
 PolylineVerdicts::PolylineVerdicts(const GeodesicTriangulation& g, const PolylineVerdicts& earlier) : kept_(g) {
-    const Mesh& mesh = g.fine().mesh;
-    for (OpenMesh::EdgeHandle e : g.coarse().edges()) {
-        const Polyline& raw = g.polyline(e);
-        if (const Verdict* known = earlier.verdict(g, e)) {
-            verdicts_[&raw] = *known;
-            continue;
-        }
-        // As Validator::prepare and check_polyline see it: canonical points, apart and on common faces.
-        if (raw.size() < 2) continue;
-        auto path = std::make_shared<Polyline>();
-        path->reserve(raw.size());
-        for (const SurfacePoint& p : raw) path->push_back(mesh.canonical(p));
-        if (points_defect(mesh, *path).empty()) {
-            auto crossings = std::make_shared<const CrossingItems>(polyline_crossing_items(mesh, *path));
-            verdicts_[&raw] = {g.length(e), shape_defect(mesh, *path, g.length(e)), std::move(path),
-                               std::move(crossings)};
-        }
+    for (OpenMesh::EdgeHandle e : g.coarse().edges()) earlier.find_or_make(g, e, verdicts_);
+}
+
+void PolylineVerdicts::advance(const GeodesicTriangulation& g, const std::vector<int>& edges) {
+    auto has = [](const GeodesicTriangulation& in, int e) {
+        return static_cast<std::size_t>(e) < in.coarse().n_edges() &&
+               !in.coarse().status(OpenMesh::EdgeHandle(e)).deleted();
+    };
+    // g's verdicts there are found before the old ones go: a polyline may have moved to another of those edges.
+    std::unordered_map<const Polyline*, Verdict> added;
+    for (int e : edges)
+        if (has(g, e)) find_or_make(g, OpenMesh::EdgeHandle(e), added);
+    if (kept_)
+        for (int e : edges)
+            if (has(*kept_, e)) verdicts_.erase(&kept_->polyline(OpenMesh::EdgeHandle(e)));
+    for (auto& [raw, verdict] : added) verdicts_[raw] = std::move(verdict);
+    kept_ = g;
+}
+
+void PolylineVerdicts::find_or_make(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e,
+                                    std::unordered_map<const Polyline*, Verdict>& into) const {
+    const Polyline& raw = g.polyline(e);
+    if (const Verdict* known = verdict(g, e)) {
+        into[&raw] = *known;
+        return;
     }
+    // As Validator::prepare and check_polyline see it: canonical points, apart and on common faces.
+    if (raw.size() < 2) return;
+    const Mesh& mesh = g.fine().mesh;
+    auto path = std::make_shared<Polyline>();
+    path->reserve(raw.size());
+    for (const SurfacePoint& p : raw) path->push_back(mesh.canonical(p));
+    if (!points_defect(mesh, *path).empty()) return;
+    auto crossings = std::make_shared<const CrossingItems>(polyline_crossing_items(mesh, *path));
+    into[&raw] = {g.length(e), shape_defect(mesh, *path, g.length(e)), std::move(path), std::move(crossings)};
 }
 
 const PolylineVerdicts::Verdict* PolylineVerdicts::verdict(const GeodesicTriangulation& g,

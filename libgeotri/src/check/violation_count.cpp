@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <iterator>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -77,16 +79,53 @@ struct Buckets {
     std::vector<AlongEdge> along_edge;
     std::vector<InFace> in_face;
 
+    static bool before(const OnVertex& a, const OnVertex& b) { return a.vertex < b.vertex; }
+    static bool before(const OnEdge& a, const OnEdge& b) { return a.key < b.key || (a.key == b.key && a.t < b.t); }
+    static bool before(const NearVertex& a, const NearVertex& b) { return a.vertex < b.vertex; }
+    static bool before(const AlongEdge& a, const AlongEdge& b) { return a.key < b.key; }
+    static bool before(const InFace& a, const InFace& b) { return a.face < b.face; }
+
     void sort() {
-        std::sort(on_vertex.begin(), on_vertex.end(),
-                  [](const OnVertex& a, const OnVertex& b) { return a.vertex < b.vertex; });
-        std::sort(on_edge.begin(), on_edge.end(),
-                  [](const OnEdge& a, const OnEdge& b) { return a.key < b.key || (a.key == b.key && a.t < b.t); });
-        std::sort(near_vertex.begin(), near_vertex.end(),
-                  [](const NearVertex& a, const NearVertex& b) { return a.vertex < b.vertex; });
-        std::sort(along_edge.begin(), along_edge.end(),
-                  [](const AlongEdge& a, const AlongEdge& b) { return a.key < b.key; });
-        std::sort(in_face.begin(), in_face.end(), [](const InFace& a, const InFace& b) { return a.face < b.face; });
+        sort(on_vertex);
+        sort(on_edge);
+        sort(near_vertex);
+        sort(along_edge);
+        sort(in_face);
+    }
+
+    /// The items of `kept` but for those of the features that are `gone`, with those of `added` (sorted). Items
+    /// that sort alike may come in another order than sort() would give them: nothing that reads them depends on it.
+    static Buckets merged(const Buckets& kept, const std::vector<unsigned char>& gone, Buckets added) {
+        Buckets out;
+        merge(kept.on_vertex, gone, std::move(added.on_vertex), [](const OnVertex& x) { return x.point.feature; },
+              out.on_vertex);
+        merge(kept.on_edge, gone, std::move(added.on_edge), [](const OnEdge& x) { return x.point.feature; },
+              out.on_edge);
+        merge(kept.near_vertex, gone, std::move(added.near_vertex),
+              [](const NearVertex& x) { return x.at.point.feature; }, out.near_vertex);
+        merge(kept.along_edge, gone, std::move(added.along_edge), [](const AlongEdge& x) { return x.feature; },
+              out.along_edge);
+        merge(kept.in_face, gone, std::move(added.in_face), [](const InFace& x) { return x.end[0].feature; },
+              out.in_face);
+        return out;
+    }
+
+private:
+    template <class T>
+    static void sort(std::vector<T>& items) {
+        std::sort(items.begin(), items.end(), [](const T& a, const T& b) { return before(a, b); });
+    }
+
+    template <class T, class Feature>
+    static void merge(const std::vector<T>& kept, const std::vector<unsigned char>& gone, std::vector<T> added,
+                      Feature feature, std::vector<T>& out) {
+        out.reserve(kept.size() + added.size());
+        std::copy_if(kept.begin(), kept.end(), std::back_inserter(out),
+                     [&](const T& x) { return !gone[static_cast<std::size_t>(feature(x))]; });
+        const auto middle = static_cast<std::ptrdiff_t>(out.size());
+        out.insert(out.end(), added.begin(), added.end());
+        std::inplace_merge(out.begin(), out.begin() + middle, out.end(),
+                           [](const T& a, const T& b) { return before(a, b); });
     }
 };
 
@@ -276,6 +315,12 @@ void meetings_between(const Mesh& mesh, const Buckets& x, const Buckets& g, cons
     }
 }
 
+/// Condition 2 at a coarse vertex: whether it fails, and where (VertexCorners::first_bad).
+struct CornerVerdict {
+    bool violated = false;
+    int first_bad = -1;
+};
+
 struct EdgeState {
     int index = -1;
     bool present = false;             ///< not deleted
@@ -326,7 +371,7 @@ struct ViolationCount::State {
     std::vector<VertexState> vertices;       ///< per coarse vertex
     std::vector<EdgeIdentity> edge_identities;  ///< per coarse edge, from `edges`
     std::vector<const SurfacePoint*> locations; ///< per coarse vertex: its raw location in `vertices`, or null
-    std::vector<unsigned char> corners_violated;  ///< condition 2, per coarse vertex
+    std::vector<CornerVerdict> corners;      ///< condition 2, per coarse vertex
     std::vector<int> rotation_start;         ///< per coarse vertex and one more, into rotation
     std::vector<int> rotation;
     Buckets buckets;                         ///< condition 3's items of every feature
@@ -344,8 +389,11 @@ struct Difference {
     std::vector<VertexState> vertices;
     std::vector<unsigned char> gone;          ///< per feature of the state: differs in G, or is not in it
     std::vector<int> gone_list;
-    std::vector<unsigned char> corners_violated;  ///< per coarse vertex of G whose condition 2 was checked
-    std::vector<int> rotation_start, rotation;    ///< when asked for (full): every vertex's
+    // Where asked for (to make a state of G): the coarse vertices whose condition 2 was checked again, ascending,
+    // with their verdicts and rotations (rotation_start: per checked vertex and one more, into rotation).
+    std::vector<int> checked;
+    std::vector<CornerVerdict> checked_corners;
+    std::vector<int> rotation_start, rotation;
     Buckets buckets;                              ///< the items of the features that differ
     Meetings meetings;                            ///< those that involve them, sorted, without repeats
     std::array<int, 3> violations{};
@@ -380,8 +428,11 @@ std::vector<unsigned char> corners_that_may_differ(const ViolationCount::State& 
     return may_differ;
 }
 
+/// What g differs in from `base`, with g's violations counted from there; `record`: with what it takes to make
+/// g's state (make_state()). Against a state of nothing (no g), everything in g differs.
 Difference difference(const ViolationCount::State& base, const GeodesicTriangulation& g, const PolylineVerdicts& known,
-                      bool full) {
+                      bool record) {
+    const bool full = !base.g;
     const Mesh& mesh = g.fine().mesh;
     const CoarseMesh& coarse = g.coarse();
     const int nv = static_cast<int>(coarse.n_vertices()), ne = static_cast<int>(coarse.n_edges());
@@ -475,10 +526,7 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
     }
 
     // Condition 2, at the vertices whose location, edges around or polylines there differ.
-    if (full) {
-        d.rotation_start.assign(1, 0);
-        d.corners_violated.assign(static_cast<std::size_t>(nv), 0);
-    }
+    if (record) d.rotation_start.assign(1, 0);
     const std::vector<unsigned char> may_differ =
         full ? std::vector<unsigned char>() : corners_that_may_differ(base, g, d);
     std::vector<int> around;
@@ -486,13 +534,9 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
     for (int v = 0; v < nv; ++v) {
         if (!full && !may_differ[static_cast<std::size_t>(v)]) continue;
         const bool differs = d.vertex_slot[static_cast<std::size_t>(v)] >= 0;
-        const bool was_violated = v < base_nv && base.corners_violated[static_cast<std::size_t>(v)];
+        const bool was_violated = v < base_nv && base.corners[static_cast<std::size_t>(v)].violated;
         around.clear();
         if (vertex(v).present) rotation(coarse, VertexHandle(v), around);
-        if (full) {
-            d.rotation.insert(d.rotation.end(), around.begin(), around.end());
-            d.rotation_start.push_back(static_cast<int>(d.rotation.size()));
-        }
         if (!differs) {
             const auto first = base.rotation.begin() + base.rotation_start[static_cast<std::size_t>(v)];
             const auto last = base.rotation.begin() + base.rotation_start[static_cast<std::size_t>(v) + 1];
@@ -504,6 +548,12 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
             if (same) continue;
         }
         if (was_violated) --d.violations[1];
+        if (record) {
+            d.checked.push_back(v);
+            d.checked_corners.push_back({});
+            d.rotation.insert(d.rotation.end(), around.begin(), around.end());
+            d.rotation_start.push_back(static_cast<int>(d.rotation.size()));
+        }
         // As Validator::check_corners(): not measurable where a polyline is unusable (condition 1 names it).
         angles.clear();
         bool measurable = !around.empty();
@@ -521,13 +571,15 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
             const SurfacePoint& q = forward ? path[1] : path[path.size() - 2];
             angles.push_back(polar_angle(mesh, p, q));
         }
-        if (measurable && vertex_corners(mesh, vertex(v).canonical, angles).violated()) {
+        if (!measurable) continue;
+        const VertexCorners corners = vertex_corners(mesh, vertex(v).canonical, angles);
+        if (corners.violated()) {
             ++d.violations[1];
-            if (full) d.corners_violated[static_cast<std::size_t>(v)] = 1;
+            if (record) d.checked_corners.back() = {true, corners.first_bad};
         }
     }
     for (int v = nv; v < base_nv; ++v)
-        if (base.corners_violated[static_cast<std::size_t>(v)]) --d.violations[1];
+        if (base.corners[static_cast<std::size_t>(v)].violated) --d.violations[1];
 
     // Condition 3: the meetings that involve a feature that differs, in g against the others and among themselves,
     // and in the state those that involve one that is gone.
@@ -566,42 +618,145 @@ Difference difference(const ViolationCount::State& base, const GeodesicTriangula
 
 }  // namespace
 
-ViolationCount::ViolationCount(const GeodesicTriangulation& g, const PolylineVerdicts& known) {
-    const State nothing;
-    Difference d = difference(nothing, g, known, true);
-    auto state = std::make_shared<State>();
+namespace {
+
+/// The state of g, whose difference from `base` is d (recorded): base's where g agrees with it, d's elsewhere.
+std::shared_ptr<const ViolationCount::State> make_state(const ViolationCount::State& base,
+                                                        const GeodesicTriangulation& g, Difference d) {
+    auto state = std::make_shared<ViolationCount::State>();
     state->g.emplace(g);
-    // Against nothing, every edge and vertex differs, in index order.
-    state->edges = std::move(d.edges);
-    state->vertices = std::move(d.vertices);  // the buckets point into it: moved, not copied
-    for (const EdgeState& s : state->edges)
+    const std::size_t ne = g.coarse().n_edges(), nv = g.coarse().n_vertices();
+    state->edges.reserve(ne);
+    for (std::size_t e = 0; e < ne; ++e) {
+        const int slot = d.edge_slot[e];
+        state->edges.push_back(slot >= 0 ? std::move(d.edges[static_cast<std::size_t>(slot)]) : base.edges[e]);
+        const EdgeState& s = state->edges.back();
         state->edge_identities.push_back({s.present ? s.raw : nullptr, s.length, s.from, s.to});
+    }
+    state->vertices.reserve(nv);
+    for (std::size_t v = 0; v < nv; ++v) {
+        const int slot = d.vertex_slot[v];
+        state->vertices.push_back(slot >= 0 ? d.vertices[static_cast<std::size_t>(slot)] : base.vertices[v]);
+    }
     for (const VertexState& s : state->vertices) state->locations.push_back(s.present ? &s.raw : nullptr);
-    state->corners_violated = std::move(d.corners_violated);
-    state->rotation_start = std::move(d.rotation_start);
-    state->rotation = std::move(d.rotation);
-    state->buckets = std::move(d.buckets);
-    const std::size_t features = 2 * std::max(state->edges.size(), state->vertices.size()) + 2;
+
+    // Condition 2: base's rotations and verdicts, but at the vertices checked again.
+    state->corners.assign(nv, {});
+    state->rotation_start.assign(1, 0);
+    std::size_t next = 0;  // into d.checked
+    for (std::size_t v = 0; v < nv; ++v) {
+        if (next < d.checked.size() && d.checked[next] == static_cast<int>(v)) {
+            state->corners[v] = d.checked_corners[next];
+            state->rotation.insert(state->rotation.end(), d.rotation.begin() + d.rotation_start[next],
+                                   d.rotation.begin() + d.rotation_start[next + 1]);
+            ++next;
+        } else {  // not checked again: g has it, unchanged, as base
+            state->corners[v] = base.corners[v];
+            state->rotation.insert(state->rotation.end(), base.rotation.begin() + base.rotation_start[v],
+                                   base.rotation.begin() + base.rotation_start[v + 1]);
+        }
+        state->rotation_start.push_back(static_cast<int>(state->rotation.size()));
+    }
+
+    // Condition 3. A coarse vertex's items in a face point at its location, which is now in state->vertices.
+    state->buckets = Buckets::merged(base.buckets, d.gone, std::move(d.buckets));
+    for (InFace& x : state->buckets.in_face)
+        if (is_vertex(x.end[0].feature))
+            x.at[0] = x.at[1] = &state->vertices[static_cast<std::size_t>(x.end[0].feature / 2)].canonical;
+    Meetings meetings = std::move(d.meetings);
+    const std::size_t base_features = base.meeting_start.empty() ? 0 : base.meeting_start.size() - 1;
+    for (std::size_t f = 0; f < base_features; ++f) {
+        if (d.gone[f]) continue;
+        for (int i = base.meeting_start[f]; i < base.meeting_start[f + 1]; ++i) {
+            const int other = base.meeting_other[static_cast<std::size_t>(i)];
+            if (other >= static_cast<int>(f) && !d.gone[static_cast<std::size_t>(other)])
+                meetings.emplace_back(static_cast<int>(f), other);
+        }
+    }
+    if (static_cast<int>(meetings.size()) != d.violations[2])
+        throw std::logic_error("ViolationCount: " + std::to_string(meetings.size()) + " meetings kept, " +
+                               std::to_string(d.violations[2]) + " counted");
+    const std::size_t features = 2 * std::max(ne, nv) + 2;
     state->meeting_start.assign(features + 1, 0);
-    for (const auto& [a, b] : d.meetings) {
+    for (const auto& [a, b] : meetings) {
         ++state->meeting_start[static_cast<std::size_t>(a) + 1];
         if (b != a) ++state->meeting_start[static_cast<std::size_t>(b) + 1];
     }
     for (std::size_t f = 0; f < features; ++f) state->meeting_start[f + 1] += state->meeting_start[f];
     state->meeting_other.resize(static_cast<std::size_t>(state->meeting_start[features]));
-    std::vector<int> next(state->meeting_start.begin(), state->meeting_start.end() - 1);
-    for (const auto& [a, b] : d.meetings) {
-        state->meeting_other[static_cast<std::size_t>(next[static_cast<std::size_t>(a)]++)] = b;
-        if (b != a) state->meeting_other[static_cast<std::size_t>(next[static_cast<std::size_t>(b)]++)] = a;
+    std::vector<int> slot(state->meeting_start.begin(), state->meeting_start.end() - 1);
+    for (const auto& [a, b] : meetings) {
+        state->meeting_other[static_cast<std::size_t>(slot[static_cast<std::size_t>(a)]++)] = b;
+        if (b != a) state->meeting_other[static_cast<std::size_t>(slot[static_cast<std::size_t>(b)]++)] = a;
     }
     state->violations = d.violations;
-    g_ = std::move(state);
+    return state;
+}
+
+}  // namespace
+
+ViolationCount::ViolationCount(const GeodesicTriangulation& g, const PolylineVerdicts& known) {
+    const State nothing;
+    g_ = make_state(nothing, g, difference(nothing, g, known, true));
+}
+
+ViolationCount::ViolationCount(const ViolationCount& base, const GeodesicTriangulation& trial,
+                               const PolylineVerdicts& known)
+    : g_(make_state(*base.g_, trial, difference(*base.g_, trial, known, true))) {}
+
+ValidationReport ViolationCount::report() const {
+    const State& state = *g_;
+    const CoarseMesh& coarse = state.g->coarse();
+    ValidationReport report;
+    std::copy(state.violations.begin(), state.violations.end(), report.violation_count.begin());
+    report.valid = count() == 0;
+    for (const EdgeState& s : state.edges) {
+        if (!s.present || !s.violated) continue;
+        Violation v;
+        v.condition = 1;
+        v.coarse_edges = {s.index};
+        v.coarse_vertices = {s.from, s.to};
+        report.violations.push_back(std::move(v));
+    }
+    std::vector<HalfedgeHandle> out;
+    for (std::size_t c = 0; c < state.vertices.size(); ++c) {
+        if (!state.corners[c].violated) continue;
+        out.clear();
+        for (int i = state.rotation_start[c]; i < state.rotation_start[c + 1]; ++i)
+            out.emplace_back(state.rotation[static_cast<std::size_t>(i)]);
+        report.violations.push_back(corner_violation(coarse, static_cast<int>(c), out, state.corners[c].first_bad));
+    }
+    auto side = [&](int feature) {
+        if (is_vertex(feature)) return MeetingSide{true, feature / 2, -1, -1};
+        const EdgeState& s = state.edges[static_cast<std::size_t>(feature / 2)];
+        return MeetingSide{false, s.index, s.from, s.to};
+    };
+    for (std::size_t f = 0; f + 1 < state.meeting_start.size(); ++f)
+        for (int i = state.meeting_start[f]; i < state.meeting_start[f + 1]; ++i) {
+            const int other = state.meeting_other[static_cast<std::size_t>(i)];
+            if (other >= static_cast<int>(f))
+                report.violations.push_back(meeting_violation(side(static_cast<int>(f)), side(other)));
+        }
+    return report;
 }
 
 int ViolationCount::count() const { return g_->violations[0] + g_->violations[1] + g_->violations[2]; }
 
 int ViolationCount::count(const GeodesicTriangulation& trial, const PolylineVerdicts& known) const {
     const Difference d = difference(*g_, trial, known, false);
+    return d.violations[0] + d.violations[1] + d.violations[2];
+}
+
+int ViolationCount::count(const GeodesicTriangulation& trial, const PolylineVerdicts& known, Changed& changed) const {
+    const Difference d = difference(*g_, trial, known, false);
+    changed = {};
+    for (const EdgeState& s : d.edges) changed.edges.push_back(s.index);
+    for (const VertexState& s : d.vertices) changed.vertices.push_back(s.index);
+    for (int feature : d.gone_list) (is_vertex(feature) ? changed.vertices : changed.edges).push_back(feature / 2);
+    for (std::vector<int>* list : {&changed.edges, &changed.vertices}) {
+        std::sort(list->begin(), list->end());
+        list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
     return d.violations[0] + d.violations[1] + d.violations[2];
 }
 

@@ -3,6 +3,7 @@
 #include <geotri/tangent_angles.h>
 
 #include <algorithm>
+#include <numeric>
 #include <utility>
 
 namespace geotri::detail {
@@ -49,18 +50,25 @@ void add_edge_faces(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e, std:
 }  // namespace
 
 std::vector<int> StaleTrials::changed_faces(const GeodesicTriangulation& g, const GeodesicTriangulation& trial) {
+    std::vector<int> edges(std::max(g.coarse().n_edges(), trial.coarse().n_edges()));
+    std::vector<int> vertices(std::max(g.coarse().n_vertices(), trial.coarse().n_vertices()));
+    std::iota(edges.begin(), edges.end(), 0);
+    std::iota(vertices.begin(), vertices.end(), 0);
+    return changed_faces(g, trial, edges, vertices);
+}
+
+std::vector<int> StaleTrials::changed_faces(const GeodesicTriangulation& g, const GeodesicTriangulation& trial,
+                                            const std::vector<int>& edges, const std::vector<int>& vertices) {
     const geodesic::Mesh& mesh = g.fine().mesh;
     std::vector<int> faces;
-    const std::size_t edges = std::max(g.coarse().n_edges(), trial.coarse().n_edges());
-    for (std::size_t i = 0; i < edges; ++i) {
-        const OpenMesh::EdgeHandle e(static_cast<int>(i));
+    for (int i : edges) {
+        const OpenMesh::EdgeHandle e(i);
         if (same_edge(g, trial, e)) continue;
         for (const GeodesicTriangulation* side : {&g, &trial})
             if (has_edge(*side, e)) add_edge_faces(*side, e, faces);
     }
-    const std::size_t vertices = std::max(g.coarse().n_vertices(), trial.coarse().n_vertices());
-    for (std::size_t i = 0; i < vertices; ++i) {
-        const OpenMesh::VertexHandle v(static_cast<int>(i));
+    for (int i : vertices) {
+        const OpenMesh::VertexHandle v(i);
         if (has_vertex(g, v) && has_vertex(trial, v) && g.location(v) == trial.location(v)) continue;
         // Where a vertex moves, whether its edges still start at it (condition 1), and so take part in conditions 2
         // and 3, changes too, even with their polylines unchanged.

@@ -22,6 +22,10 @@ public:
     /// vertices where `trial` differs from `g` touch, in g and in trial: what a judgement of trial against g reads.
     /// Both share their polylines where they agree (a copy of g, changed by GeodesicTriangulation's operations).
     static std::vector<int> changed_faces(const GeodesicTriangulation& g, const GeodesicTriangulation& trial);
+    /// The same, where g and trial can differ only in the coarse `edges` and `vertices` (indices in either, as
+    /// ViolationCount finds them): nothing else is compared.
+    static std::vector<int> changed_faces(const GeodesicTriangulation& g, const GeodesicTriangulation& trial,
+                                          const std::vector<int>& edges, const std::vector<int>& vertices);
 
     /// G has changed on `faces` (changed_faces() of the G before and the G after).
     void changed(const std::vector<int>& faces);
