@@ -37,16 +37,6 @@ bool same_edge(const GeodesicTriangulation& a, const GeodesicTriangulation& b, O
            ca.from_vertex_handle(ha) == cb.from_vertex_handle(hb) && ca.to_vertex_handle(ha) == cb.to_vertex_handle(hb);
 }
 
-/// The faces of e's polyline in g, and of its ends' locations.
-void add_edge_faces(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e, std::vector<int>& out) {
-    const geodesic::Mesh& mesh = g.fine().mesh;
-    const CoarseMesh& coarse = g.coarse();
-    for (const SurfacePoint& p : g.polyline(e)) add_faces_of(mesh, p, out);
-    // Its ends' corners change with it.
-    for (int k = 0; k < 2; ++k)
-        add_faces_of(mesh, g.location(coarse.to_vertex_handle(coarse.halfedge_handle(e, k))), out);
-}
-
 }  // namespace
 
 std::vector<int> StaleTrials::changed_faces(const GeodesicTriangulation& g, const GeodesicTriangulation& trial) {
@@ -61,23 +51,42 @@ std::vector<int> StaleTrials::changed_faces(const GeodesicTriangulation& g, cons
                                             const std::vector<int>& edges, const std::vector<int>& vertices) {
     const geodesic::Mesh& mesh = g.fine().mesh;
     std::vector<int> faces;
-    for (int i : edges) {
-        const OpenMesh::EdgeHandle e(i);
-        if (same_edge(g, trial, e)) continue;
-        for (const GeodesicTriangulation* side : {&g, &trial})
-            if (has_edge(*side, e)) add_edge_faces(*side, e, faces);
-    }
-    for (int i : vertices) {
-        const OpenMesh::VertexHandle v(i);
-        if (has_vertex(g, v) && has_vertex(trial, v) && g.location(v) == trial.location(v)) continue;
-        // Where a vertex moves, whether its edges still start at it (condition 1), and so take part in conditions 2
-        // and 3, changes too, even with their polylines unchanged.
-        for (const GeodesicTriangulation* side : {&g, &trial}) {
+    for (const GeodesicTriangulation* side : {&g, &trial}) {
+        const CoarseMesh& coarse = side->coarse();
+        // The edges that differ, and the vertices that differ with every edge around them: where a vertex moves,
+        // whether its edges still start at it (condition 1), and so take part in conditions 2 and 3, changes too,
+        // even with their polylines unchanged. Each edge and vertex once: on fans of needles, a location on a
+        // vertex of T is on hundreds of its faces.
+        std::vector<int> side_edges, side_vertices;
+        for (int i : edges)
+            if (!same_edge(g, trial, OpenMesh::EdgeHandle(i)) && has_edge(*side, OpenMesh::EdgeHandle(i)))
+                side_edges.push_back(i);
+        for (int i : vertices) {
+            const OpenMesh::VertexHandle v(i);
+            if (has_vertex(g, v) && has_vertex(trial, v) && g.location(v) == trial.location(v)) continue;
             if (!has_vertex(*side, v)) continue;
-            add_faces_of(mesh, side->location(v), faces);
-            for (OpenMesh::HalfedgeHandle h : side->coarse().voh_range(v))
-                add_edge_faces(*side, side->coarse().edge_handle(h), faces);
+            side_vertices.push_back(i);
+            for (OpenMesh::HalfedgeHandle h : coarse.voh_range(v)) side_edges.push_back(coarse.edge_handle(h).idx());
         }
+        std::sort(side_edges.begin(), side_edges.end());
+        side_edges.erase(std::unique(side_edges.begin(), side_edges.end()), side_edges.end());
+        // The faces of their polylines, and of their ends' locations: the ends' corners change with them.
+        for (int i : side_edges) {
+            const OpenMesh::EdgeHandle e(i);
+            const OpenMesh::HalfedgeHandle h = coarse.halfedge_handle(e, 0);
+            const int from = coarse.from_vertex_handle(h).idx(), to = coarse.to_vertex_handle(h).idx();
+            side_vertices.push_back(from);
+            side_vertices.push_back(to);
+            const Polyline& line = side->polyline(e);
+            for (std::size_t k = 0; k < line.size(); ++k) {
+                const bool at_from = k == 0 && line[k] == side->location(OpenMesh::VertexHandle(from));
+                const bool at_to = k + 1 == line.size() && line[k] == side->location(OpenMesh::VertexHandle(to));
+                if (!at_from && !at_to) add_faces_of(mesh, line[k], faces);  // else added with the location
+            }
+        }
+        std::sort(side_vertices.begin(), side_vertices.end());
+        side_vertices.erase(std::unique(side_vertices.begin(), side_vertices.end()), side_vertices.end());
+        for (int i : side_vertices) add_faces_of(mesh, side->location(OpenMesh::VertexHandle(i)), faces);
     }
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());

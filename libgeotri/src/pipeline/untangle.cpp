@@ -38,18 +38,25 @@ namespace {
 
 int total(const ValidationReport& r) { return static_cast<int>(r.violations.size()); }
 
+/// `indices` sorted, each once.
+std::vector<int> sorted_once(std::vector<int> indices) {
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+    return indices;
+}
+
 /// The coarse edges that a flip might mend: those that the violations name, and those at the vertices and faces
 /// that they name. Sorted, so that untangling is deterministic.
 std::vector<int> candidate_edges(const CoarseMesh& coarse, const ValidationReport& report) {
-    std::set<int> edges;
+    std::vector<int> edges;
     for (const Violation& v : report.violations) {
-        edges.insert(v.coarse_edges.begin(), v.coarse_edges.end());
+        edges.insert(edges.end(), v.coarse_edges.begin(), v.coarse_edges.end());
         for (int c : v.coarse_vertices)
-            for (EdgeHandle e : coarse.ve_range(OpenMesh::VertexHandle(c))) edges.insert(e.idx());
+            for (EdgeHandle e : coarse.ve_range(OpenMesh::VertexHandle(c))) edges.push_back(e.idx());
         for (int f : v.coarse_faces)
-            for (EdgeHandle e : coarse.fe_range(OpenMesh::FaceHandle(f))) edges.insert(e.idx());
+            for (EdgeHandle e : coarse.fe_range(OpenMesh::FaceHandle(f))) edges.push_back(e.idx());
     }
-    return {edges.begin(), edges.end()};
+    return sorted_once(std::move(edges));
 }
 
 /// How far untangling moves a coarse vertex: to the vertices of T within this many edges of it.
@@ -71,14 +78,14 @@ int cheap_count(const ValidationReport& r) { return r.violation_count[0] + r.vio
 /// The coarse vertices that a fork split might mend: those that the violations name, and the ends of the edges
 /// that they name. Sorted, so that untangling is deterministic.
 std::vector<int> candidate_vertices(const CoarseMesh& coarse, const ValidationReport& report) {
-    std::set<int> vertices;
+    std::vector<int> vertices;
     for (const Violation& v : report.violations) {
-        vertices.insert(v.coarse_vertices.begin(), v.coarse_vertices.end());
+        vertices.insert(vertices.end(), v.coarse_vertices.begin(), v.coarse_vertices.end());
         for (int e : v.coarse_edges)
             for (int side = 0; side < 2; ++side)
-                vertices.insert(coarse.to_vertex_handle(coarse.halfedge_handle(EdgeHandle(e), side)).idx());
+                vertices.push_back(coarse.to_vertex_handle(coarse.halfedge_handle(EdgeHandle(e), side)).idx());
     }
-    return {vertices.begin(), vertices.end()};
+    return sorted_once(std::move(vertices));
 }
 
 /// Counts the violations of conditions 1-3 of a trial copy of G (ViolationCount, from what the trial changed).
