@@ -411,6 +411,7 @@ public:
             ValidationOptions no_overlay;
             no_overlay.overlay = false;
             report_ = detail::validate(g_, no_overlay, verdicts_);
+            check_count(count_->count(), report_, "the G kept");
             report_exact_ = true;
         }
         add_overlay_check(g_, report_);
