@@ -10,11 +10,21 @@
 #include <geotri/geodesic_triangulation.h>
 
 #include <array>
-#include <map>
+#include <cstddef>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 namespace geotri::detail {
+
+/// A hash of untangling's keys of moves (a kind and two indices), for the sets and maps that look them up.
+struct MoveKeyHash {
+    std::size_t operator()(const std::array<int, 3>& key) const {
+        std::size_t h = 0;
+        for (int x : key) h = h * 0x9E3779B97F4A7C15ull + static_cast<std::size_t>(static_cast<unsigned>(x));
+        return h;
+    }
+};
 
 class StaleTrials {
 public:
@@ -46,7 +56,7 @@ private:
         int operations = 0;
         long epoch = 0;  ///< changes_ when it failed
     };
-    std::map<std::array<int, 3>, Failure> failures_;
+    std::unordered_map<std::array<int, 3>, Failure, MoveKeyHash> failures_;
     std::vector<long> changed_at_;  ///< per fine face: the number of the last change on it (0: none)
     long changes_ = 0;
 };

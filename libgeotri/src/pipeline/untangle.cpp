@@ -22,6 +22,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -38,11 +39,15 @@ namespace {
 
 int total(const ValidationReport& r) { return static_cast<int>(r.violations.size()); }
 
-/// `indices` sorted, each once.
-std::vector<int> sorted_once(std::vector<int> indices) {
-    std::sort(indices.begin(), indices.end());
-    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-    return indices;
+/// `indices`, each below n, in increasing order and each once. Through a mark per index rather than by sorting:
+/// the violations of a G of genus 1409 name a hundred thousand edges, over and over, in every round.
+std::vector<int> sorted_once(const std::vector<int>& indices, std::size_t n) {
+    std::vector<unsigned char> named(n, 0);
+    for (int i : indices) named[static_cast<std::size_t>(i)] = 1;
+    std::vector<int> out;
+    for (std::size_t i = 0; i < n; ++i)
+        if (named[i]) out.push_back(static_cast<int>(i));
+    return out;
 }
 
 /// The coarse edges that a flip might mend: those that the violations name, and those at the vertices and faces
@@ -56,7 +61,7 @@ std::vector<int> candidate_edges(const CoarseMesh& coarse, const ValidationRepor
         for (int f : v.coarse_faces)
             for (EdgeHandle e : coarse.fe_range(OpenMesh::FaceHandle(f))) edges.push_back(e.idx());
     }
-    return sorted_once(std::move(edges));
+    return sorted_once(edges, coarse.n_edges());
 }
 
 /// How far untangling moves a coarse vertex: to the vertices of T within this many edges of it.
@@ -85,7 +90,7 @@ std::vector<int> candidate_vertices(const CoarseMesh& coarse, const ValidationRe
             for (int side = 0; side < 2; ++side)
                 vertices.push_back(coarse.to_vertex_handle(coarse.halfedge_handle(EdgeHandle(e), side)).idx());
     }
-    return sorted_once(std::move(vertices));
+    return sorted_once(vertices, coarse.n_vertices());
 }
 
 /// Counts the violations of conditions 1-3 of a trial copy of G (ViolationCount, from what the trial changed).
@@ -507,7 +512,7 @@ private:
     geodesic::ExactGeodesic* given_propagation_;  ///< the calling thread's, when its caller gave one
     std::vector<std::unique_ptr<geodesic::ExactGeodesic>> propagations_;  ///< one per thread without a given one
     std::vector<std::optional<GeodesicTriangulation>> trial_storage_;      ///< one per thread (trial_copy())
-    std::set<std::array<int, 3>> failed_;  ///< keys of the moves tried without success
+    std::unordered_set<std::array<int, 3>, detail::MoveKeyHash> failed_;  ///< keys of the moves tried without success
     detail::StaleTrials stale_;            ///< the flips among them that are known to fail again
     bool report_exact_ = true;             ///< report_ is validate()'s, not the count's (exact())
     detail::PolylineVerdicts verdicts_;    ///< condition 1 on G's polylines, for judging the trials
@@ -530,11 +535,13 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
     if (cheap_count(report) > 0) report = without_condition_4(std::move(report));
     // A focus is given only to the untangling inside a trial, which a budget of work may bound.
     Untangler untangler(g, report, options, calling_propagation, result, focus == nullptr);
-    // The violations that moves are sought for: all, or with a focus those that name a coarse vertex there.
-    ValidationReport named;
+    // The violations that moves are sought for: all (`report`, not copied: there may be thousands), or with a focus
+    // those that name a coarse vertex there (`focused`).
+    ValidationReport focused;
+    const ValidationReport* named = &report;
     auto try_flips = [&] {
         std::vector<Move> moves;
-        for (int index : candidate_edges(g.coarse(), named)) {
+        for (int index : candidate_edges(g.coarse(), *named)) {
             const EdgeHandle e(index);
             if (g.coarse().is_boundary(e) || !g.coarse().is_flip_ok(e)) continue;
             const int a = g.coarse().to_vertex_handle(g.coarse().halfedge_handle(e, 0)).idx();
@@ -550,7 +557,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
     };
     auto try_fork_splits = [&] {
         std::vector<Move> moves;
-        for (int index : candidate_vertices(g.coarse(), named))
+        for (int index : candidate_vertices(g.coarse(), *named))
             for (const Fork& fork : find_forks(g, OpenMesh::VertexHandle(index))) {
                 auto run = [fork](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                                  const CountViolations& count) {
@@ -565,7 +572,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
     // again at the next vertex, and no single split lowers the count. The chain splits a fork at every vertex that
     // the violations name, round after round while there are any, and is judged as one move.
     auto try_fork_chain = [&] {
-        const ValidationReport& start = named;
+        const ValidationReport& start = *named;
         auto chain = [&start](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
                                              const CountViolations&) {
             ValidationOptions cheap;
@@ -591,7 +598,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
     // no flip parts them: a coarse vertex there, splitting one of them, settled (settle_around()), may.
     auto try_meeting_splits = [&] {
         std::vector<Move> moves;
-        for (const auto& [e, index] : meetings_at_fine_vertices(g, named)) {
+        for (const auto& [e, index] : meetings_at_fine_vertices(g, *named)) {
             auto run = [e = e, index = index](GeodesicTriangulation& trial,
                                                             geodesic::ExactGeodesic& propagation,
                                                             const CountViolations& count) {
@@ -616,7 +623,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
     // joined to the vertex it merges into by new shortest geodesics.
     auto try_collapses = [&] {
         std::vector<Move> moves;
-        for (int index : candidate_vertices(g.coarse(), named))
+        for (int index : candidate_vertices(g.coarse(), *named))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index)))
             {
                 if (added_by_bisection(index)) continue;
@@ -647,7 +654,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
     auto try_relocations = [&](int rings, int inner, bool last_resort) {
         if (last_resort && !budget_left()) return false;
         std::vector<Move> moves;
-        for (int index : candidate_vertices(g.coarse(), named)) {
+        for (int index : candidate_vertices(g.coarse(), *named)) {
             const OpenMesh::VertexHandle v(index);
             const std::vector<int> nearby = nearby_fine_vertices(g, v, rings);
             const std::size_t tried = inner > 0 ? nearby_fine_vertices(g, v, inner).size() : 0;
@@ -674,7 +681,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
         if (!budget_left()) return false;
         std::vector<Move> moves;
         const CoarseMesh& coarse = g.coarse();
-        for (int index : candidate_edges(coarse, named)) {
+        for (int index : candidate_edges(coarse, *named)) {
             const EdgeHandle first(index);
             if (coarse.is_boundary(first) || !coarse.is_flip_ok(first)) continue;
             for (int side = 0; side < 2; ++side)
@@ -701,7 +708,7 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
     auto try_collapse_and_untangle = [&](bool nested) {
         if (!budget_left()) return false;
         std::vector<Move> moves;
-        for (int index : candidate_vertices(g.coarse(), named))
+        for (int index : candidate_vertices(g.coarse(), *named))
             for (HalfedgeHandle h : g.coarse().voh_ccw_range(OpenMesh::VertexHandle(index))) {
                 if (added_by_bisection(index)) continue;
                 auto run = [h, nested, &options](GeodesicTriangulation& trial, geodesic::ExactGeodesic& propagation,
@@ -785,8 +792,11 @@ void untangle_in_place(GeodesicTriangulation& g, const UntangleOptions& options,
                                     result.collapses + result.relocations <
                                 options.max_operations) {
         ++round;
-        named = focus ? violations_naming(g, report, *focus) : report;
-        if (focus && named.violations.empty()) {  // what is left is elsewhere
+        if (focus) {
+            focused = violations_naming(g, report, *focus);
+            named = &focused;
+        }
+        if (focus && named->violations.empty()) {  // what is left is elsewhere
             result.stuck = true;
             break;
         }
