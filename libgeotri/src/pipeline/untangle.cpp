@@ -114,18 +114,22 @@ int settle_around(GeodesicTriangulation& g, const SplitResult& split, geodesic::
     const CoarseMesh& coarse = g.coarse();
     std::vector<OpenMesh::VertexHandle> added{split.vertex};
     int count = count_violations(g);
-    // Does `operation` on a copy of G and keeps it when it lowers the count.
+    // Does `operation` on a copy of G and keeps it when it lowers the count. The copy is made in the storage of the
+    // one before: a new copy for each step tried, and its destruction, were most of untangling a sponge of genus
+    // 1409 once fork splits were all that was left to try.
+    std::optional<GeodesicTriangulation> trial;
     auto keep_if_lower = [&](const std::function<bool(GeodesicTriangulation&)>& operation) {
-        GeodesicTriangulation trial = g;
+        if (trial) trial->assign(g);
+        else trial.emplace(g);
         int after = 0;
         try {
-            if (!operation(trial)) return false;
-            after = count_violations(trial);
+            if (!operation(*trial)) return false;
+            after = count_violations(*trial);
         } catch (const InvalidInput&) {
             return false;  // G is unfit for it around there (it is not valid): this step fails, not the split
         }
         if (after >= count) return false;
-        g = std::move(trial);
+        g.assign(*trial);
         count = after;
         return true;
     };
