@@ -117,19 +117,19 @@ int settle_around(GeodesicTriangulation& g, const SplitResult& split, geodesic::
     // Does `operation` on a copy of G and keeps it when it lowers the count. The copy is made in the storage of the
     // one before: a new copy for each step tried, and its destruction, were most of untangling a sponge of genus
     // 1409 once fork splits were all that was left to try.
-    std::optional<GeodesicTriangulation> trial;
+    std::optional<GeodesicTriangulation> copy;
     auto keep_if_lower = [&](const std::function<bool(GeodesicTriangulation&)>& operation) {
-        if (trial) trial->assign(g);
-        else trial.emplace(g);
+        if (copy) copy->assign(g);
+        else copy.emplace(g);
         int after = 0;
         try {
-            if (!operation(*trial)) return false;
-            after = count_violations(*trial);
+            if (!operation(*copy)) return false;
+            after = count_violations(*copy);
         } catch (const InvalidInput&) {
             return false;  // G is unfit for it around there (it is not valid): this step fails, not the split
         }
         if (after >= count) return false;
-        g.assign(*trial);
+        g.assign(*copy);
         count = after;
         return true;
     };
@@ -462,13 +462,12 @@ private:
     void adopt(GeodesicTriangulation& trial, std::optional<ValidationReport>& report, int cheap,
                const detail::ViolationCount::Changed& changed) {
         detail::ViolationCount count(*count_, trial, verdicts_);
-        verdicts_.advance(trial, changed.edges);
         if (count.count() != cheap)
             throw std::logic_error("untangling: a kept trial: " + std::to_string(cheap) + " violations counted, " +
                                    std::to_string(count.count()) + " by its own count");
         const bool exact = report.has_value();
-        if (!report) report = count.report();
-        check_count(count.count(), *report, "G");
+        if (exact) check_count(count.count(), *report, "G");
+        else report = count.report();
 #ifndef NDEBUG
         {
             ValidationOptions no_overlay;
@@ -476,6 +475,7 @@ private:
             check_count(cheap, detail::validate(trial, no_overlay, verdicts_), "a kept trial");
         }
 #endif
+        verdicts_.advance(trial, changed.edges);
         stale_.changed(detail::StaleTrials::changed_faces(g_, trial, changed.edges, changed.vertices));
         g_ = std::move(trial);
         report_ = std::move(*report);
