@@ -35,8 +35,8 @@ int run(tools::Tool& tool) {
                     "through a bijective map of each patch. Every element is certified by Bernstein bounds: its\n"
                     "Jacobian is positive against the plane of its corners and against every face of T it covers,\n"
                     "its min J / max J is at least --min-quality, and it lies within --tolerance of its patch. G is\n"
-                    "refined around the elements that fail, at the creases of T that they cross or else by\n"
-                    "bisection, until none does.");
+                    "refined around the elements that fail, with vertices on the creases and corners of T that\n"
+                    "they reach over, or else by bisection, until none does.");
     tool.set_help_footer({"geotri-curve bone.flip.gtri -o bone.msh", "geotri-curve bone.flip.gtri -o bone.vtu --order 4 --json",
                           "geotri-curve bone.flip.gtri -o bone.mesh --order 2"},
                          "every element is certified",
@@ -135,6 +135,7 @@ int run(tools::Tool& tool) {
         summary.add("tolerance", options.tolerance);
         summary.add("refinement_rounds", r.rounds);
         summary.add("splits", r.splits);
+        summary.add("moves", r.moves);
         summary.add("round_cap_reached", r.round_cap_reached);
         summary.add("seconds", curve_seconds);
         std::printf("%s\n", summary.str().c_str());
@@ -142,11 +143,11 @@ int run(tools::Tool& tool) {
     if (tool.verbose()) {
         const char* program = tool.program().c_str();
         std::fprintf(stderr,
-                     "%s: %zu elements of order %d (%zu faces before, %d splits in %d rounds): %d of them certified "
-                     "against their corners' plane, %d against T; smallest min J / max J %.3g, largest distance "
-                     "%.3g of the diagonal (%.3f s)\n",
-                     program, r.curved.elements.size(), r.curved.order, faces_before, r.splits, r.rounds, plane_valid,
-                     surface_valid, worst_quality, largest_distance, curve_seconds);
+                     "%s: %zu elements of order %d (%zu faces before, %d splits and %d moves in %d rounds): %d of them "
+                     "certified against their corners' plane, %d against T; smallest min J / max J %.3g, largest "
+                     "distance %.3g of the diagonal (%.3f s)\n",
+                     program, r.curved.elements.size(), r.curved.order, faces_before, r.splits, r.moves, r.rounds,
+                     plane_valid, surface_valid, worst_quality, largest_distance, curve_seconds);
         if (r.failing > 0) {
             std::fprintf(stderr, "%s: %d element%s not certified (%s):", program, r.failing,
                          r.failing == 1 ? " is" : "s are",

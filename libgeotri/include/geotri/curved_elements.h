@@ -87,20 +87,26 @@ struct CurveAdaptOptions {
 struct CurveAdaptResult {
     CurvedMesh curved;        ///< of G as refined
     int rounds = 0;           ///< rounds that refined G
-    int splits = 0;           ///< edges bisected
+    int splits = 0;           ///< edges and faces split
+    int moves = 0;            ///< vertices of G moved onto a vertex or a crease of T
     int failing = 0;          ///< elements that still fail (0 unless a round could mend nothing or the cap was hit)
     bool round_cap_reached = false;
 };
 
-/// curve_elements(), then, while some elements fail (CurvedElement::passes()), splits each failing face (split_edge(),
-/// so that G stays valid and isogeometric): where one of its edges crosses a crease of T (a point of its polyline
-/// where T's normal turns more than at all its other points together, in the middle half of the edge), at that
-/// point, so that G's edges come to follow the crease; else its longest edge at the middle of its polyline. Then
-/// flips towards geodesic Delaunay from the new vertices' links shape G again, and the elements of the faces that
-/// changed are made again; at most max_rounds rounds. A smooth patch
-/// flattens as it shrinks and a patch off the creases is smooth, so the failures go, but for what a refused split or
-/// the cap leaves: `failing` counts them, and the elements' certificates say why. Deterministic. Throws as
-/// curve_elements() does, and InvalidInput for a tolerance or quality out of range.
+/// curve_elements(), then, while some elements fail (CurvedElement::passes()), mends each failing face with changes
+/// that keep G valid and isogeometric, and makes the elements of the faces that changed again; at most max_rounds
+/// rounds.
+/// - An element that folds over T (not certified against T's normals) reaches over a crease or a corner of T,
+///   which keeps its angle however small the element gets: a vertex of G goes onto a vertex of T there (splitting
+///   the face or an edge, or moving a corner of the patch), so that G's edges come to run along T's edges.
+/// - Else, where one of its edges crosses a crease of T (a point of its polyline where T's normal turns more than
+///   at all its other points together), the edge is split there when that point is in the edge's middle half, and
+///   the nearer end moves onto it otherwise (for an element that folds); else its longest edge is split at the
+///   middle of its polyline.
+/// Flips towards geodesic Delaunay from the changed vertices' links then shape G again. A smooth patch flattens as
+/// it shrinks, so the failures go, but for what a refused change or the cap leaves: `failing` counts them, and the
+/// elements' certificates say why. Deterministic. Throws as curve_elements() does, and InvalidInput for a tolerance
+/// or quality out of range.
 CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOptions& options = {});
 
 /// The Bézier control points of the elements, indexed as CurvedMesh::nodes: element e is the Bézier triangle of

@@ -1,5 +1,6 @@
 #include <geodesic/errors.h>
 #include <geotri/curved_elements.h>
+#include <geotri/relocate.h>
 #include <geotri/split.h>
 #include <geotri/tangent_angles.h>
 
@@ -10,9 +11,9 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geotri {
@@ -38,12 +39,27 @@ Eigen::Vector3d face_normal(const geodesic::Mesh& mesh, int f) {
     return length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
 }
 
-/// The point of e's polyline where T's normal turns the most (a crease that the polyline crosses), when that point
-/// lies in the middle half of the edge and its turn is more than all the others together; 0 when there is none.
-/// The middle half keeps both parts at least a quarter of the edge, so that splits at creases shape G no worse than
-/// bisection by more than a bounded factor; a crease near an end comes into the middle half of a part after one or
-/// two bisections.
-std::size_t crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) {
+/// The largest angle between the normals of face `fine` of T and of a face beside it across an edge that ends at
+/// vertex v: how sharply T bends at v, seen from that face.
+double bend_at(const geodesic::Mesh& mesh, int fine, int v) {
+    double bend = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const int h = 3 * fine + i;
+        if ((mesh.tail(h) != v && mesh.head(h) != v) || mesh.twin(h) < 0) continue;
+        const double cosine = face_normal(mesh, fine).dot(face_normal(mesh, geodesic::Mesh::face_of(mesh.twin(h))));
+        bend = std::max(bend, std::acos(std::clamp(cosine, -1.0, 1.0)));
+    }
+    return bend;
+}
+
+/// Where e's polyline crosses a crease of T: its point where T's normal turns more than at all its other points
+/// together (index 0 when there is none), and how far along e that point is, by arc length.
+struct CreaseCrossing {
+    std::size_t index = 0;
+    double fraction = 0.0;
+};
+
+CreaseCrossing crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHandle e) {
     const geodesic::Mesh& mesh = g.fine().mesh;
     const Polyline& line = g.polyline(e);
     std::vector<double> arc(line.size(), 0.0);
@@ -54,48 +70,141 @@ std::size_t crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHandle
         return on_common_edge(mesh, line[i], line[i + 1]) ? -1 : common_face(mesh, line[i], line[i + 1]);
     };
     double total_turn = 0.0, best_turn = 0.0;
-    std::size_t best = 0;
+    CreaseCrossing best;
     for (std::size_t i = 1; i + 1 < line.size(); ++i) {
         const int before = segment_face(i - 1), after = segment_face(i);
         if (before < 0 || after < 0 || before == after) continue;
         const double turn =
             std::acos(std::clamp(face_normal(mesh, before).dot(face_normal(mesh, after)), -1.0, 1.0));
         total_turn += turn;
-        const double fraction = arc[i] / arc.back();
-        if (turn > best_turn && fraction >= 0.25 && fraction <= 0.75) {
+        if (turn > best_turn) {
             best_turn = turn;
-            best = i;
+            best = {i, arc[i] / arc.back()};
         }
     }
-    return best_turn > total_turn - best_turn ? best : 0;
+    return best_turn > total_turn - best_turn ? best : CreaseCrossing{};
 }
 
-/// Splits failing face f: at the crease crossing of one of its edges (crease_crossing(), longest edge first), or
-/// else at the middle of its longest edge whose split is not refused, or else at `centre`, inside its patch. A
-/// smooth element flattens as it shrinks, but one that straddles a crease of T keeps the crease's angle at every
-/// size: only edges of G along the crease, which vertices of G on it start, take the crease out of its elements. Returns whether a split was made, and if so, the
-/// faces that it changed (those of the edge split) and the new vertex.
-bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& centre,
-                       std::array<OpenMesh::FaceHandle, 2>& sides, OpenMesh::VertexHandle& vertex) {
-    const std::vector<OpenMesh::EdgeHandle> edges = edges_longest_first(g, f);
-    auto split = [&](OpenMesh::EdgeHandle e, std::size_t crossing) {
-        const CoarseMesh& coarse = g.coarse();
-        sides = {coarse.face_handle(coarse.halfedge_handle(e, 0)), coarse.face_handle(coarse.halfedge_handle(e, 1))};
-        const SplitResult r = crossing > 0 ? split_edge_at_point(g, e, crossing) : split_edge(g, e, 0.5);
-        vertex = r.vertex;
-        return r.done;
+/// One change of G made to mend a failing element: the faces whose elements it changed (those that the change
+/// rebuilt, by handle) and the vertex of G that it made or moved.
+struct Mend {
+    std::vector<OpenMesh::FaceHandle> faces;
+    OpenMesh::VertexHandle vertex;
+    bool moved = false;  ///< a vertex moved, not a split
+};
+
+/// Splits e at point `index` of its polyline (at its middle when `index` is 0).
+bool split_edge_for(GeodesicTriangulation& g, OpenMesh::EdgeHandle e, std::size_t index, Mend& mend) {
+    const CoarseMesh& coarse = g.coarse();
+    const std::vector<OpenMesh::FaceHandle> faces{coarse.face_handle(coarse.halfedge_handle(e, 0)),
+                                                  coarse.face_handle(coarse.halfedge_handle(e, 1))};
+    const SplitResult r = index > 0 ? split_edge_at_point(g, e, index) : split_edge(g, e, 0.5);
+    if (r.done) mend = {faces, r.vertex, false};
+    return r.done;
+}
+
+/// Splits face f at point p of its patch.
+bool split_face_for(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& p, Mend& mend) {
+    const SplitResult r = split_face(g, f, p);
+    if (r.done) mend = {{f}, r.vertex, false};
+    return r.done;
+}
+
+/// Moves vertex v of G to p, inside its star (relocate_vertex_in_star(), which keeps G valid).
+bool move_vertex_for(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const SurfacePoint& p, Mend& mend) {
+    if (!relocate_vertex_in_star(g, v, p).done) return false;
+    mend = {{}, v, true};
+    for (OpenMesh::FaceHandle n : g.coarse().vf_range(v)) mend.faces.push_back(n);
+    return true;
+}
+
+/// Mends face f's element where it folds over T (ElementCertificate::surface): puts a vertex of G on a vertex of T
+/// at a face of T that the element is not proven to stand on the right way up, where T bends most first. A fold
+/// is a crease or a corner of T that the patch reaches over, often by a sliver that a geodesic passing a corner
+/// leaves, and it keeps its angle however small the patch gets: it goes only when edges of G run along T's edges
+/// there, and a geodesic between two vertices of T that share an edge is that edge. The vertex of T is looked for
+/// in the closed patches of f and of the faces around f's corners that this round has not changed (`changed`):
+/// on a side, that edge is split there; inside, the face is split there, or else, where its spokes cannot be made
+/// (they would run along a geodesic that hugs the corner), the nearest of its corners that is not on a vertex of T
+/// moves there. A vertex of T that is a corner already is passed over.
+bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, OpenMesh::FaceHandle f,
+               const std::vector<char>& changed, Mend& mend) {
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    const CoarseMesh& coarse = g.coarse();
+    std::vector<std::pair<double, int>> candidates;  // (-bend, vertex of T): the sharpest first, then by index
+    for (int fine : detail::element_geometry(cache, f).folded_faces)
+        for (int v : mesh.triangle(fine)) candidates.emplace_back(-bend_at(mesh, fine, v), v);
+    std::sort(candidates.begin(), candidates.end());
+    std::vector<OpenMesh::FaceHandle> around{f};  // f, then the fans of its corners, in order
+    for (OpenMesh::VertexHandle c : coarse.fv_range(f))
+        for (OpenMesh::FaceHandle n : coarse.vf_range(c))
+            if (std::find(around.begin(), around.end(), n) == around.end()) around.push_back(n);
+    auto unchanged = [&](OpenMesh::FaceHandle h) {
+        return static_cast<std::size_t>(h.idx()) < changed.size() && !changed[static_cast<std::size_t>(h.idx())];
     };
+    std::vector<int> tried;
+    for (const auto& candidate : candidates) {
+        const int v = candidate.second;
+        if (std::find(tried.begin(), tried.end(), v) != tried.end()) continue;
+        tried.push_back(v);
+        const SurfacePoint at = SurfacePoint::at_vertex(v);
+        const auto holder = std::find_if(around.begin(), around.end(), [&](OpenMesh::FaceHandle h) {
+            const std::vector<int>& held = detail::element_geometry(cache, h).patch_vertices;
+            return unchanged(h) && std::binary_search(held.begin(), held.end(), v);
+        });
+        if (holder == around.end()) continue;
+        const OpenMesh::FaceHandle h = *holder;
+        bool corner = false, on_side = false;
+        for (OpenMesh::VertexHandle c : coarse.fv_range(h)) corner = corner || g.location(c) == at;
+        if (corner) continue;
+        for (OpenMesh::HalfedgeHandle side : coarse.fh_range(h)) {
+            const Polyline& line = g.polyline(coarse.edge_handle(side));
+            const auto point = std::find(line.begin() + 1, line.end() - 1, at);
+            if (point == line.end() - 1) continue;
+            on_side = true;
+            if (unchanged(coarse.opposite_face_handle(side)) &&
+                split_edge_for(g, coarse.edge_handle(side), static_cast<std::size_t>(point - line.begin()), mend))
+                return true;
+        }
+        if (on_side) continue;
+        if (split_face_for(g, h, at, mend)) return true;
+        std::vector<std::pair<double, OpenMesh::VertexHandle>> corners;  // nearest first
+        for (OpenMesh::VertexHandle c : coarse.fv_range(h))
+            if (g.location(c).kind != geodesic::PointKind::vertex)
+                corners.emplace_back((mesh.point(g.location(c)) - mesh.position(v)).norm(), c);
+        std::sort(corners.begin(), corners.end());
+        for (const auto& nearest : corners)
+            if (move_vertex_for(g, nearest.second, at, mend)) return true;
+    }
+    return false;
+}
+
+/// Mends failing face f by refining: where one of its edges (longest first) crosses a crease of T
+/// (crease_crossing()) in its middle half, that edge is split there, so that G's edges come to follow the crease;
+/// where it crosses one nearer an end and the element folds over T (`folds`), that end moves onto the crease, as a
+/// split there would leave a sliver. Else the longest edge whose split is not refused is split at its middle, or
+/// else the face at `centre`, inside its patch.
+bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& centre, bool folds,
+                       Mend& mend) {
+    const std::vector<OpenMesh::EdgeHandle> edges = edges_longest_first(g, f);
+    for (OpenMesh::EdgeHandle e : edges) {
+        const CreaseCrossing crossing = crease_crossing(g, e);
+        if (crossing.index == 0) continue;
+        if (crossing.fraction >= 0.25 && crossing.fraction <= 0.75) {
+            if (split_edge_for(g, e, crossing.index, mend)) return true;
+        } else if (folds) {
+            const OpenMesh::HalfedgeHandle h = g.coarse().halfedge_handle(e, 0);
+            const OpenMesh::VertexHandle end =
+                crossing.fraction < 0.5 ? g.coarse().from_vertex_handle(h) : g.coarse().to_vertex_handle(h);
+            if (move_vertex_for(g, end, g.polyline(e)[crossing.index], mend)) return true;
+        }
+    }
     for (OpenMesh::EdgeHandle e : edges)
-        if (const std::size_t crossing = crease_crossing(g, e); crossing > 0 && split(e, crossing)) return true;
-    for (OpenMesh::EdgeHandle e : edges)
-        if (split(e, 0)) return true;
+        if (split_edge_for(g, e, 0, mend)) return true;
     // Where no edge can be split (their new geodesics would leave the patches), the face itself, at its centre
     // (unless the patch's map gave none).
     if (centre.kind == geodesic::PointKind::vertex && centre.vertex < 0) return false;
-    sides = {f, OpenMesh::FaceHandle()};
-    const SplitResult r = split_face(g, f, centre);
-    vertex = r.vertex;
-    return r.done;
+    return split_face_for(g, f, centre, mend);
 }
 
 }  // namespace
@@ -121,33 +230,36 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
             result.round_cap_reached = true;
             return result;
         }
-        // Each failing face, in face order, that no split of this round has changed yet, is split
+        // Each failing face, in face order, that no change of this round has touched yet, is mended: where its
+        // element folds over T, by a vertex of G on T's vertex there (mend_fold()), else by a split
         // (split_for_curving()). Face handles stay valid across splits.
         std::vector<char> changed(g.coarse().n_faces(), 0);
-        std::vector<OpenMesh::EdgeHandle> around;  // the links of the new vertices
-        int splits = 0;
+        std::vector<OpenMesh::EdgeHandle> around;  // the links of the new and moved vertices
+        int mends = 0;
         for (OpenMesh::FaceHandle f : failing) {
             if (changed[static_cast<std::size_t>(f.idx())]) continue;
-            std::array<OpenMesh::FaceHandle, 2> sides;
-            OpenMesh::VertexHandle vertex;
-            if (!split_for_curving(g, f, detail::patch_centre(cache, f), sides, vertex)) continue;
-            for (OpenMesh::FaceHandle side : sides)
-                if (side.is_valid() && static_cast<std::size_t>(side.idx()) < changed.size())
-                    changed[static_cast<std::size_t>(side.idx())] = 1;
-            for (OpenMesh::HalfedgeHandle h : g.coarse().voh_range(vertex))
+            const bool folds = detail::element_geometry(cache, f).certificate.surface != Certification::valid;
+            Mend mend;
+            if (!(folds && mend_fold(g, cache, f, changed, mend)) &&
+                !split_for_curving(g, f, detail::element_geometry(cache, f).centre, folds, mend))
+                continue;
+            for (OpenMesh::FaceHandle face : mend.faces)
+                if (static_cast<std::size_t>(face.idx()) < changed.size())
+                    changed[static_cast<std::size_t>(face.idx())] = 1;
+            for (OpenMesh::HalfedgeHandle h : g.coarse().voh_range(mend.vertex))
                 around.push_back(g.coarse().edge_handle(g.coarse().next_halfedge_handle(h)));
-            ++splits;
+            (mend.moved ? result.moves : result.splits) += 1;
+            ++mends;
         }
-        if (splits == 0) return result;  // nothing mends what is left: the certificates say why
+        if (mends == 0) return result;  // nothing mends what is left: the certificates say why
         // Splits leave thin triangles behind, whose corners' plane tells little of their surface: flips towards
-        // geodesic Delaunay (which keep G valid) shape them again, starting from the new vertices' links; the rest
-        // of G is as the round found it.
+        // geodesic Delaunay (which keep G valid) shape them again, starting from the changed vertices' links; the
+        // rest of G is as the round found it.
         FlipToDelaunayOptions flips;
         flips.threads = options.curve.threads;
         FlipToDelaunayResult flipped;
         detail::improve_around(g, around, flips, Workspace{}, flipped);
         ++result.rounds;
-        result.splits += splits;
     }
 }
 

@@ -119,6 +119,7 @@ detail::ElementGeometry make_element(const GeodesicTriangulation& g, const Overl
     // x there has the sign of J with the fine face's normal (the triangle's map is orientation-preserving).
     certificate.surface = Certification::valid;
     certificate.distance = 0.0;
+    std::vector<int> folded_faces;
     for (const detail::PatchParameterization::Triangle& t : map.triangles()) {
         const std::vector<Eigen::Vector3d> restricted =
             detail::restrict_to_triangle(x, p, t.reference[0], t.reference[1], t.reference[2]);
@@ -141,7 +142,21 @@ detail::ElementGeometry make_element(const GeodesicTriangulation& g, const Overl
         const detail::SignBounds surface = detail::bound_sign(detail::jacobian_coefficients(restricted, p, face_normal), 2 * (p - 1),
                                               options.max_subdivisions);
         certificate.surface = worse(certificate.surface, surface.verdict);
+        if (surface.verdict != Certification::valid) folded_faces.push_back(t.fine_face);
     }
+
+    // Where the element folds, refinement puts a vertex of G on a vertex of T there (curve_adaptively()).
+    std::sort(folded_faces.begin(), folded_faces.end());
+    folded_faces.erase(std::unique(folded_faces.begin(), folded_faces.end()), folded_faces.end());
+    made.folded_faces = std::move(folded_faces);
+    for (const detail::PatchParameterization::Triangle& t : map.triangles())
+        for (int v : t.vertices)
+            if (const SurfacePoint& at = overlay.points[static_cast<std::size_t>(v)];
+                at.kind == geodesic::PointKind::vertex)
+                made.patch_vertices.push_back(at.vertex);
+    std::sort(made.patch_vertices.begin(), made.patch_vertices.end());
+    made.patch_vertices.erase(std::unique(made.patch_vertices.begin(), made.patch_vertices.end()),
+                              made.patch_vertices.end());
 
     for (const std::array<int, 3>& index : gmsh_node_order(p)) {
         const std::size_t at = multi_index_position(index[1], index[2]);

@@ -15,13 +15,19 @@
 namespace geotri::detail {
 
 /// What make_element() finds for one face: the interior nodes and their positions, in gmsh's order, the
-/// certificate, and the point of T at the centre of the reference triangle (where to split the face when no edge
-/// split can be made).
+/// certificate, and what refinement needs to mend the element: the point of T at the centre of the reference
+/// triangle (where to split the face when no edge split can be made), the faces of T that it folds over and the
+/// vertices of T in its patch.
 struct ElementGeometry {
     std::vector<SurfacePoint> interior;
     std::vector<Eigen::Vector3d> interior_positions;
     ElementCertificate certificate;
     SurfacePoint centre;
+    /// The faces of T, in increasing order, over which the element is not proven to stand the right way up
+    /// (ElementCertificate::surface).
+    std::vector<int> folded_faces;
+    /// The vertices of T in the closed patch, in increasing order.
+    std::vector<int> patch_vertices;
 };
 
 /// One face's element with what it was made from: the corners' vertex indices and the sides' paths, from
@@ -43,10 +49,9 @@ struct ElementCache {
 /// options.
 CurvedMesh curve_elements(const GeodesicTriangulation& g, const CurveOptions& options, ElementCache& cache);
 
-/// The centre of face f's patch (ElementGeometry::centre) as the last curve_elements() with `cache` found it.
-/// Precondition: that call made or kept f's element.
-inline const SurfacePoint& patch_centre(const ElementCache& cache, OpenMesh::FaceHandle f) {
-    return cache.by_face[static_cast<std::size_t>(f.idx())]->geometry.centre;
+/// What the last curve_elements() with `cache` found for face f. Precondition: that call made or kept f's element.
+inline const ElementGeometry& element_geometry(const ElementCache& cache, OpenMesh::FaceHandle f) {
+    return cache.by_face[static_cast<std::size_t>(f.idx())]->geometry;
 }
 
 }  // namespace geotri::detail
