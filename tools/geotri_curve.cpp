@@ -153,7 +153,7 @@ int run(tools::Tool& tool) {
                          r.failing == 1 ? " is" : "s are",
                          no_adapt              ? "--no-adapt"
                          : r.round_cap_reached ? "the round cap was reached"
-                                               : "no split mends them");
+                                               : "no change of G mends them");
             int shown = 0;
             for (const geotri::CurvedElement& element : r.curved.elements) {
                 if (element.passes(options.min_quality, max_distance)) continue;

@@ -98,7 +98,8 @@ struct CurveAdaptResult {
 /// rounds.
 /// - An element that folds over T (not certified against T's normals) reaches over a crease or a corner of T,
 ///   which keeps its angle however small the element gets: a vertex of G goes onto a vertex of T there (splitting
-///   the face or an edge, or moving a corner of the patch), so that G's edges come to run along T's edges.
+///   the face or an edge, or moving a corner of the patch), so that G's edges come to run along T's edges. Where
+///   T bends there by a right angle or more and no such vertex is in reach, the element is not bisected.
 /// - Else, where one of its edges crosses a crease of T (a point of its polyline where T's normal turns more than
 ///   at all its other points together), the edge is split there when that point is in the edge's middle half, and
 ///   the nearer end moves onto it otherwise (for an element that folds); else its longest edge is split at the

@@ -126,9 +126,11 @@ bool move_vertex_for(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const S
 /// in the closed patches of f and of the faces around f's corners that this round has not changed (`changed`):
 /// on a side, that edge is split there; inside, the face is split there, or else, where its spokes cannot be made
 /// (they would run along a geodesic that hugs the corner), the nearest of its corners that is not on a vertex of T
-/// moves there. A vertex of T that is a corner already is passed over.
+/// moves there. A vertex of T that is a corner already is passed over. `reached` says whether a vertex of T was found
+/// that is not a corner yet, whether or not a change there was made.
 bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, OpenMesh::FaceHandle f,
-               const std::vector<char>& changed, Mend& mend) {
+               const std::vector<char>& changed, Mend& mend, bool& reached) {
+    reached = false;
     const geodesic::Mesh& mesh = g.fine().mesh;
     const CoarseMesh& coarse = g.coarse();
     std::vector<std::pair<double, int>> candidates;  // (-bend, vertex of T): the sharpest first, then by index
@@ -157,6 +159,7 @@ bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, Open
         bool corner = false, on_side = false;
         for (OpenMesh::VertexHandle c : coarse.fv_range(h)) corner = corner || g.location(c) == at;
         if (corner) continue;
+        reached = true;
         for (OpenMesh::HalfedgeHandle side : coarse.fh_range(h)) {
             const Polyline& line = g.polyline(coarse.edge_handle(side));
             const auto point = std::find(line.begin() + 1, line.end() - 1, at);
@@ -179,13 +182,23 @@ bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, Open
     return false;
 }
 
+/// Whether T bends by a right angle or more at an edge of a face of T that face f's element folds over. An element
+/// flat on one side of such an edge meets the faces on the other side edge-on or worse at every size, so bisecting
+/// it does not mend the fold; only a vertex of G at the fold does.
+bool folds_sharply(const geodesic::Mesh& mesh, const detail::ElementCache& cache, OpenMesh::FaceHandle f) {
+    for (int fine : detail::element_geometry(cache, f).folded_faces)
+        for (int v : mesh.triangle(fine))
+            if (bend_at(mesh, fine, v) >= 0.5 * M_PI) return true;
+    return false;
+}
+
 /// Mends failing face f by refining: where one of its edges (longest first) crosses a crease of T
 /// (crease_crossing()) in its middle half, that edge is split there, so that G's edges come to follow the crease;
 /// where it crosses one nearer an end and the element folds over T (`folds`), that end moves onto the crease, as a
 /// split there would leave a sliver. Else the longest edge whose split is not refused is split at its middle, or
-/// else the face at `centre`, inside its patch.
+/// else the face at `centre`, inside its patch, unless `bisect` is false.
 bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& centre, bool folds,
-                       Mend& mend) {
+                       bool bisect, Mend& mend) {
     const std::vector<OpenMesh::EdgeHandle> edges = edges_longest_first(g, f);
     for (OpenMesh::EdgeHandle e : edges) {
         const CreaseCrossing crossing = crease_crossing(g, e);
@@ -199,6 +212,7 @@ bool split_for_curving(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const S
             if (move_vertex_for(g, end, g.polyline(e)[crossing.index], mend)) return true;
         }
     }
+    if (!bisect) return false;
     for (OpenMesh::EdgeHandle e : edges)
         if (split_edge_for(g, e, 0, mend)) return true;
     // Where no edge can be split (their new geodesics would leave the patches), the face itself, at its centre
@@ -232,7 +246,9 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
         }
         // Each failing face, in face order, that no change of this round has touched yet, is mended: where its
         // element folds over T, by a vertex of G on T's vertex there (mend_fold()), else by a split
-        // (split_for_curving()). Face handles stay valid across splits.
+        // (split_for_curving()). A sharp fold whose vertices of T are out of reach is not bisected: that would
+        // only shrink the element away from them, and double the failing elements round after round. Face handles
+        // stay valid across splits.
         std::vector<char> changed(g.coarse().n_faces(), 0);
         std::vector<OpenMesh::EdgeHandle> around;  // the links of the new and moved vertices
         int mends = 0;
@@ -240,9 +256,12 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
             if (changed[static_cast<std::size_t>(f.idx())]) continue;
             const bool folds = detail::element_geometry(cache, f).certificate.surface != Certification::valid;
             Mend mend;
-            if (!(folds && mend_fold(g, cache, f, changed, mend)) &&
-                !split_for_curving(g, f, detail::element_geometry(cache, f).centre, folds, mend))
-                continue;
+            bool reached = false;
+            const bool mended =
+                (folds && mend_fold(g, cache, f, changed, mend, reached)) ||
+                split_for_curving(g, f, detail::element_geometry(cache, f).centre, folds,
+                                  !folds || reached || !folds_sharply(g.fine().mesh, cache, f), mend);
+            if (!mended) continue;
             for (OpenMesh::FaceHandle face : mend.faces)
                 if (static_cast<std::size_t>(face.idx()) < changed.size())
                     changed[static_cast<std::size_t>(face.idx())] = 1;
