@@ -151,8 +151,9 @@ bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, Open
         tried.push_back(v);
         const SurfacePoint at = SurfacePoint::at_vertex(v);
         const auto holder = std::find_if(around.begin(), around.end(), [&](OpenMesh::FaceHandle h) {
+            if (!unchanged(h)) return false;  // a face made this round has no element in the cache yet
             const std::vector<int>& held = detail::element_geometry(cache, h).patch_vertices;
-            return unchanged(h) && std::binary_search(held.begin(), held.end(), v);
+            return std::binary_search(held.begin(), held.end(), v);
         });
         if (holder == around.end()) continue;
         const OpenMesh::FaceHandle h = *holder;
