@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -118,8 +119,22 @@ bool move_vertex_for(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const S
     return true;
 }
 
-/// Mends face f's element where it folds over T (ElementCertificate::surface): puts a vertex of G on a vertex of T
-/// at a face of T that the element is not proven to stand on the right way up, where T bends most first. A fold
+/// The vertices of T where an element folds over T (the corners of ElementGeometry::folded_faces), each once with
+/// how sharply T bends at it from a folded face (bend_at(), the largest): the sharpest first, then by index.
+std::vector<std::pair<double, int>> fold_vertices(const geodesic::Mesh& mesh, const detail::ElementGeometry& element) {
+    std::vector<std::pair<double, int>> bends;  // (-bend, vertex), to sort the sharpest first
+    for (int fine : element.folded_faces)
+        for (int v : mesh.triangle(fine)) bends.emplace_back(-bend_at(mesh, fine, v), v);
+    std::sort(bends.begin(), bends.end());
+    std::vector<std::pair<double, int>> vertices;
+    for (const auto& [bend, v] : bends)
+        if (std::none_of(vertices.begin(), vertices.end(), [v = v](const auto& seen) { return seen.second == v; }))
+            vertices.emplace_back(-bend, v);
+    return vertices;
+}
+
+/// Mends face f's element where it folds over T (ElementCertificate::surface): puts a vertex of G on one of the
+/// element's `fold` vertices (fold_vertices()), where T bends most first. A fold
 /// is a crease or a corner of T that the patch reaches over, often by a sliver that a geodesic passing a corner
 /// leaves, and it keeps its angle however small the patch gets: it goes only when edges of G run along T's edges
 /// there, and a geodesic between two vertices of T that share an edge is that edge. The vertex of T is looked for
@@ -129,14 +144,11 @@ bool move_vertex_for(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const S
 /// moves there. A vertex of T that is a corner already is passed over. `reached` says whether a vertex of T was found
 /// that is not a corner yet, whether or not a change there was made.
 bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, OpenMesh::FaceHandle f,
-               const std::vector<char>& changed, Mend& mend, bool& reached) {
+               const std::vector<std::pair<double, int>>& fold, const std::vector<char>& changed, Mend& mend,
+               bool& reached) {
     reached = false;
     const geodesic::Mesh& mesh = g.fine().mesh;
     const CoarseMesh& coarse = g.coarse();
-    std::vector<std::pair<double, int>> candidates;  // (-bend, vertex of T): the sharpest first, then by index
-    for (int fine : detail::element_geometry(cache, f).folded_faces)
-        for (int v : mesh.triangle(fine)) candidates.emplace_back(-bend_at(mesh, fine, v), v);
-    std::sort(candidates.begin(), candidates.end());
     std::vector<OpenMesh::FaceHandle> around{f};  // f, then the fans of its corners, in order
     for (OpenMesh::VertexHandle c : coarse.fv_range(f))
         for (OpenMesh::FaceHandle n : coarse.vf_range(c))
@@ -144,11 +156,7 @@ bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, Open
     auto unchanged = [&](OpenMesh::FaceHandle h) {
         return static_cast<std::size_t>(h.idx()) < changed.size() && !changed[static_cast<std::size_t>(h.idx())];
     };
-    std::vector<int> tried;
-    for (const auto& candidate : candidates) {
-        const int v = candidate.second;
-        if (std::find(tried.begin(), tried.end(), v) != tried.end()) continue;
-        tried.push_back(v);
+    for (const auto& [bend, v] : fold) {
         const SurfacePoint at = SurfacePoint::at_vertex(v);
         const auto holder = std::find_if(around.begin(), around.end(), [&](OpenMesh::FaceHandle h) {
             if (!unchanged(h)) return false;  // a face made this round has no element in the cache yet
@@ -180,16 +188,6 @@ bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, Open
         for (const auto& nearest : corners)
             if (move_vertex_for(g, nearest.second, at, mend)) return true;
     }
-    return false;
-}
-
-/// Whether T bends by a right angle or more at an edge of a face of T that face f's element folds over. An element
-/// flat on one side of such an edge meets the faces on the other side edge-on or worse at every size, so bisecting
-/// it does not mend the fold; only a vertex of G at the fold does.
-bool folds_sharply(const geodesic::Mesh& mesh, const detail::ElementCache& cache, OpenMesh::FaceHandle f) {
-    for (int fine : detail::element_geometry(cache, f).folded_faces)
-        for (int v : mesh.triangle(fine))
-            if (bend_at(mesh, fine, v) >= 0.5 * M_PI) return true;
     return false;
 }
 
@@ -255,13 +253,17 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
         int mends = 0;
         for (OpenMesh::FaceHandle f : failing) {
             if (changed[static_cast<std::size_t>(f.idx())]) continue;
-            const bool folds = detail::element_geometry(cache, f).certificate.surface != Certification::valid;
+            const detail::ElementGeometry& element = detail::element_geometry(cache, f);
+            const bool folds = element.certificate.surface != Certification::valid;
+            const std::vector<std::pair<double, int>> fold =
+                folds ? fold_vertices(g.fine().mesh, element) : std::vector<std::pair<double, int>>{};
+            // An element flat on one side of a bend of a right angle or more meets the faces on the other side
+            // edge-on or worse at every size: bisecting it does not mend the fold, only a vertex of G there does.
+            const bool sharp = !fold.empty() && fold.front().first >= 0.5 * M_PI;
             Mend mend;
             bool reached = false;
-            const bool mended =
-                (folds && mend_fold(g, cache, f, changed, mend, reached)) ||
-                split_for_curving(g, f, detail::element_geometry(cache, f).centre, folds,
-                                  !folds || reached || !folds_sharply(g.fine().mesh, cache, f), mend);
+            const bool mended = (folds && mend_fold(g, cache, f, fold, changed, mend, reached)) ||
+                                split_for_curving(g, f, element.centre, folds, !sharp || reached, mend);
             if (!mended) continue;
             for (OpenMesh::FaceHandle face : mend.faces)
                 if (static_cast<std::size_t>(face.idx()) < changed.size())
