@@ -130,6 +130,20 @@ int run(tools::Tool& tool) {
         summary.add("certified_plane", plane_valid);
         summary.add("certified_surface", surface_valid);
         summary.add("failing", r.failing);
+        // Each failing element by its coarse face (element face + 1 of the .msh file), with its certificate.
+        std::vector<tools::JsonSummary> failing;
+        for (const geotri::CurvedElement& element : r.curved.elements) {
+            if (element.passes(options.min_quality, max_distance)) continue;
+            const geotri::ElementCertificate& c = element.certificate;
+            tools::JsonSummary failure;
+            failure.add("face", element.face.idx());
+            failure.add("plane", geotri::to_string(c.plane));
+            failure.add("surface", geotri::to_string(c.surface));
+            failure.add("quality", c.quality_lower);
+            failure.add("distance", c.distance / r.curved.diagonal);
+            failing.push_back(std::move(failure));
+        }
+        summary.add("failing_elements", failing);
         summary.add("min_quality", worst_quality);
         summary.add("max_distance", largest_distance);
         summary.add("tolerance", options.tolerance);
