@@ -123,10 +123,18 @@ mfem_and_bezier_vtu_are_the_msh_elements)
 
 no_adapt_writes_the_uncertified_and_exits_three)
     make_valid_gtri "$bob" --faces 100
-    run in_g.gtri -o out.msh --tolerance 1e-6 --no-adapt
+    run in_g.gtri -o out.msh --tolerance 1e-6 --no-adapt --json
     expect_rc 3
     [ -s out.msh ] || fail "out.msh was not written"
     grep -q "not certified" stderr || fail "stderr does not say which elements are not certified"
+    # --json names each failing element, one of G's faces, with a distance bound beyond the tolerance.
+    /usr/bin/python3 - <<'PY' || fail "--json does not list the failing elements: $(cat stdout)"
+import json
+summary = json.load(open("stdout"))
+failing = summary["failing_elements"]
+assert summary["failing"] > 0 and len(failing) == summary["failing"]
+assert all(0 <= f["face"] < summary["elements"] and f["distance"] > 1e-6 for f in failing)
+PY
     ;;
 
 refined_g_is_written_and_valid)
