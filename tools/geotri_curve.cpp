@@ -150,6 +150,7 @@ int run(tools::Tool& tool) {
         summary.add("refinement_rounds", r.rounds);
         summary.add("splits", r.splits);
         summary.add("moves", r.moves);
+        summary.add("flips", r.flips);
         summary.add("round_cap_reached", r.round_cap_reached);
         summary.add("seconds", curve_seconds);
         std::printf("%s\n", summary.str().c_str());
@@ -157,11 +158,11 @@ int run(tools::Tool& tool) {
     if (tool.verbose()) {
         const char* program = tool.program().c_str();
         std::fprintf(stderr,
-                     "%s: %zu elements of order %d (%zu faces before, %d splits and %d moves in %d rounds): %d of them "
-                     "certified against their corners' plane, %d against T; smallest min J / max J %.3g, largest "
-                     "distance %.3g of the diagonal (%.3f s)\n",
-                     program, r.curved.elements.size(), r.curved.order, faces_before, r.splits, r.moves, r.rounds,
-                     plane_valid, surface_valid, worst_quality, largest_distance, curve_seconds);
+                     "%s: %zu elements of order %d (%zu faces before, %d splits, %d moves and %d flips in %d rounds): "
+                     "%d of them certified against their corners' plane, %d against T; smallest min J / max J %.3g, "
+                     "largest distance %.3g of the diagonal (%.3f s)\n",
+                     program, r.curved.elements.size(), r.curved.order, faces_before, r.splits, r.moves, r.flips,
+                     r.rounds, plane_valid, surface_valid, worst_quality, largest_distance, curve_seconds);
         if (r.failing > 0) {
             std::fprintf(stderr, "%s: %d element%s not certified (%s):", program, r.failing,
                          r.failing == 1 ? " is" : "s are",

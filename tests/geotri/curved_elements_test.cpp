@@ -446,6 +446,25 @@ TEST(CurveAdaptively, elements_that_fold_over_the_corners_of_a_gear_are_mended_b
             << "face " << element.face.idx();
 }
 
+// On joint, an element folds where a vertex of G stands on T's vertex already: an edge of G is flipped to join it to
+// the next fold vertex along an edge of T. Flips and moves keep the face count, and G stays valid.
+TEST(CurveAdaptively, flips_that_join_vertices_of_g_along_edges_of_t_keep_g_valid) {
+    GeodesicTriangulation g =
+        test::traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", "joint", false);
+    untangle_and_flip(g);
+    ASSERT_TRUE(validate(g).valid);
+    const std::size_t faces_before = g.coarse().n_faces();
+    const CurveAdaptResult r = curve_adaptively(g);
+    EXPECT_GT(r.flips, 0);
+    EXPECT_EQ(g.coarse().n_faces(), faces_before + 2 * static_cast<std::size_t>(r.splits));
+    test::expect_valid_with_area(g);
+    const CurveAdaptOptions defaults;
+    int failing = 0;
+    for (const CurvedElement& element : r.curved.elements)
+        failing += !element.passes(defaults.min_quality, defaults.tolerance * r.curved.diagonal);
+    EXPECT_EQ(failing, r.failing);
+}
+
 TEST(CurvedElements, refuses_an_order_out_of_range) {
     const GeodesicTriangulation g = test::unit_cube_g();
     CurveOptions options;

@@ -89,6 +89,7 @@ struct CurveAdaptResult {
     int rounds = 0;           ///< rounds that refined G
     int splits = 0;           ///< edges and faces split
     int moves = 0;            ///< vertices of G moved onto a vertex or a crease of T
+    int flips = 0;            ///< edges of G flipped to join two of its vertices along an edge of T
     int failing = 0;          ///< elements that still fail (0 unless a round could mend nothing or the cap was hit)
     bool round_cap_reached = false;
 };
@@ -98,8 +99,9 @@ struct CurveAdaptResult {
 /// rounds.
 /// - An element that folds over T (not certified against T's normals) reaches over a crease or a corner of T,
 ///   which keeps its angle however small the element gets: a vertex of G goes onto a vertex of T there (splitting
-///   the face or an edge, or moving a corner of the patch), so that G's edges come to run along T's edges. Where
-///   T bends there by a right angle or more and no such vertex is in reach, the element is not bisected.
+///   the face or an edge, or moving a corner of the patch), or, where one stands there already, an edge of G is
+///   flipped to join it to another along an edge of T, so that G's edges come to run along T's edges. Where T bends
+///   there by a right angle or more and no such vertex is in reach, the element is not bisected.
 /// - Else, where one of its edges crosses a crease of T (a point of its polyline where T's normal turns more than
 ///   at all its other points together), the edge is split there when that point is in the edge's middle half, and
 ///   the nearer end moves onto it otherwise (for an element that folds); else its longest edge is split at the

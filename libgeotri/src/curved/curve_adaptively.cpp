@@ -1,5 +1,6 @@
 #include <geodesic/errors.h>
 #include <geotri/curved_elements.h>
+#include <geotri/flip.h>
 #include <geotri/relocate.h>
 #include <geotri/split.h>
 #include <geotri/tangent_angles.h>
@@ -87,11 +88,12 @@ CreaseCrossing crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHan
 }
 
 /// One change of G made to mend a failing element: the faces whose elements it changed (those that the change
-/// rebuilt, by handle) and the vertex of G that it made or moved.
+/// rebuilt, by handle) and the vertex of G that it made, moved, or joined to another by a flip.
 struct Mend {
+    enum class Kind { split, move, flip };
     std::vector<OpenMesh::FaceHandle> faces;
     OpenMesh::VertexHandle vertex;
-    bool moved = false;  ///< a vertex moved, not a split
+    Kind kind = Kind::split;
 };
 
 /// Splits e at point `index` of its polyline (at its middle when `index` is 0).
@@ -100,23 +102,67 @@ bool split_edge_for(GeodesicTriangulation& g, OpenMesh::EdgeHandle e, std::size_
     const std::vector<OpenMesh::FaceHandle> faces{coarse.face_handle(coarse.halfedge_handle(e, 0)),
                                                   coarse.face_handle(coarse.halfedge_handle(e, 1))};
     const SplitResult r = index > 0 ? split_edge_at_point(g, e, index) : split_edge(g, e, 0.5);
-    if (r.done) mend = {faces, r.vertex, false};
+    if (r.done) mend = {faces, r.vertex, Mend::Kind::split};
     return r.done;
 }
 
 /// Splits face f at point p of its patch.
 bool split_face_for(GeodesicTriangulation& g, OpenMesh::FaceHandle f, const SurfacePoint& p, Mend& mend) {
     const SplitResult r = split_face(g, f, p);
-    if (r.done) mend = {{f}, r.vertex, false};
+    if (r.done) mend = {{f}, r.vertex, Mend::Kind::split};
     return r.done;
 }
 
 /// Moves vertex v of G to p, inside its star (relocate_vertex_in_star(), which keeps G valid).
 bool move_vertex_for(GeodesicTriangulation& g, OpenMesh::VertexHandle v, const SurfacePoint& p, Mend& mend) {
     if (!relocate_vertex_in_star(g, v, p).done) return false;
-    mend = {{}, v, true};
+    mend = {{}, v, Mend::Kind::move};
     for (OpenMesh::FaceHandle n : g.coarse().vf_range(v)) mend.faces.push_back(n);
     return true;
+}
+
+/// Joins vertices u and w of G by an edge where they face each other across one edge of G, unjoined: flips that
+/// edge (flip(), which keeps G valid or refuses), unless either of its faces changed this round.
+bool join_for(GeodesicTriangulation& g, OpenMesh::VertexHandle u, OpenMesh::VertexHandle w,
+              const std::vector<char>& changed, Mend& mend) {
+    const CoarseMesh& coarse = g.coarse();
+    for (OpenMesh::HalfedgeHandle h : coarse.voh_range(u))
+        if (coarse.to_vertex_handle(h) == w) return false;
+    for (OpenMesh::HalfedgeHandle h : coarse.voh_range(u)) {
+        // The edge opposite u in the face of h, seen from the face beyond it.
+        const OpenMesh::HalfedgeHandle across = coarse.opposite_halfedge_handle(coarse.next_halfedge_handle(h));
+        if (coarse.is_boundary(across) || coarse.to_vertex_handle(coarse.next_halfedge_handle(across)) != w) continue;
+        const std::array<OpenMesh::FaceHandle, 2> faces{coarse.face_handle(h), coarse.face_handle(across)};
+        for (OpenMesh::FaceHandle face : faces)  // a face that a split made this round lies beyond `changed`
+            if (static_cast<std::size_t>(face.idx()) >= changed.size() || changed[static_cast<std::size_t>(face.idx())])
+                return false;
+        if (!flip(g, coarse.edge_handle(across)).accepted()) return false;
+        mend = {{faces[0], faces[1]}, u, Mend::Kind::flip};
+        return true;
+    }
+    return false;
+}
+
+/// Where the element folds at vertex v of T, and a vertex of G, a corner of face h, stands on v already: joins it by
+/// an edge of G to a vertex of G on another of the `fold` vertices that shares an edge of T with v (join_for()). A
+/// geodesic between two vertices of T that share an edge is that edge, so G's edge then runs along T's there.
+bool join_along_fold(GeodesicTriangulation& g, OpenMesh::FaceHandle h, int v,
+                     const std::vector<std::pair<double, int>>& fold, const std::vector<char>& changed, Mend& mend) {
+    const geodesic::Mesh& mesh = g.fine().mesh;
+    const CoarseMesh& coarse = g.coarse();
+    OpenMesh::VertexHandle u;
+    for (OpenMesh::VertexHandle c : coarse.fv_range(h))
+        if (g.location(c) == SurfacePoint::at_vertex(v)) u = c;
+    for (const auto& [bend, w] : fold) {
+        const auto edges = mesh.outgoing_halfedges(v);
+        if (std::none_of(edges.begin(), edges.end(), [&, w = w](int e) { return mesh.head(e) == w; })) continue;
+        // A vertex of G on w that faces u across one edge is a neighbour of one of u's neighbours.
+        for (OpenMesh::VertexHandle c : coarse.vv_range(u))
+            for (OpenMesh::VertexHandle d : coarse.vv_range(c))
+                if (d != u && g.location(d) == SurfacePoint::at_vertex(w) && join_for(g, u, d, changed, mend))
+                    return true;
+    }
+    return false;
 }
 
 /// The vertices of T where an element folds over T (the corners of ElementGeometry::folded_faces), each once with
@@ -141,8 +187,9 @@ std::vector<std::pair<double, int>> fold_vertices(const geodesic::Mesh& mesh, co
 /// in the closed patches of f and of the faces around f's corners that this round has not changed (`changed`):
 /// on a side, that edge is split there; inside, the face is split there, or else, where its spokes cannot be made
 /// (they would run along a geodesic that hugs the corner), the nearest of its corners that is not on a vertex of T
-/// moves there. A vertex of T that is a corner already is passed over. `reached` says whether a vertex of T was found
-/// that is not a corner yet, whether or not a change there was made.
+/// moves there. Where a corner stands on the vertex of T already, an edge of G is flipped to join it to another fold
+/// vertex along an edge of T (join_along_fold()). `reached` says whether a vertex of T was found that is not a corner
+/// yet, whether or not a change there was made.
 bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, OpenMesh::FaceHandle f,
                const std::vector<std::pair<double, int>>& fold, const std::vector<char>& changed, Mend& mend,
                bool& reached) {
@@ -167,7 +214,12 @@ bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, Open
         const OpenMesh::FaceHandle h = *holder;
         bool corner = false, on_side = false;
         for (OpenMesh::VertexHandle c : coarse.fv_range(h)) corner = corner || g.location(c) == at;
-        if (corner) continue;
+        if (corner) {
+            // v is a vertex of G already, and the element still folds there: the edge of T from v along the fold
+            // is to become an edge of G.
+            if (join_along_fold(g, h, v, fold, changed, mend)) return true;
+            continue;
+        }
         reached = true;
         for (OpenMesh::HalfedgeHandle side : coarse.fh_range(h)) {
             const Polyline& line = g.polyline(coarse.edge_handle(side));
@@ -270,7 +322,9 @@ CurveAdaptResult curve_adaptively(GeodesicTriangulation& g, const CurveAdaptOpti
                     changed[static_cast<std::size_t>(face.idx())] = 1;
             for (OpenMesh::HalfedgeHandle h : g.coarse().voh_range(mend.vertex))
                 around.push_back(g.coarse().edge_handle(g.coarse().next_halfedge_handle(h)));
-            (mend.moved ? result.moves : result.splits) += 1;
+            (mend.kind == Mend::Kind::split ? result.splits
+             : mend.kind == Mend::Kind::move ? result.moves
+                                             : result.flips) += 1;
             ++mends;
         }
         if (mends == 0) return result;  // nothing mends what is left: the certificates say why
