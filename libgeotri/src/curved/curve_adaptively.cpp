@@ -144,8 +144,8 @@ bool join_for(GeodesicTriangulation& g, OpenMesh::VertexHandle u, OpenMesh::Vert
 }
 
 /// Where the element folds at vertex v of T, and a vertex of G, a corner of face h, stands on v already: joins it by
-/// an edge of G to a vertex of G on another of the `fold` vertices that shares an edge of T with v (join_for()). A
-/// geodesic between two vertices of T that share an edge is that edge, so G's edge then runs along T's there.
+/// an edge of G (join_for()) to a vertex of G on another of the `fold` vertices, w, that shares an edge of T with v,
+/// or on that edge. A geodesic between two points of one edge of T is that edge, so G's edge then runs along T's.
 bool join_along_fold(GeodesicTriangulation& g, OpenMesh::FaceHandle h, int v,
                      const std::vector<std::pair<double, int>>& fold, const std::vector<char>& changed, Mend& mend) {
     const geodesic::Mesh& mesh = g.fine().mesh;
@@ -156,11 +156,14 @@ bool join_along_fold(GeodesicTriangulation& g, OpenMesh::FaceHandle h, int v,
     for (const auto& [bend, w] : fold) {
         const auto edges = mesh.outgoing_halfedges(v);
         if (std::none_of(edges.begin(), edges.end(), [&, w = w](int e) { return mesh.head(e) == w; })) continue;
-        // A vertex of G on w that faces u across one edge is a neighbour of one of u's neighbours.
+        auto on_edge_to_w = [&, w = w](const SurfacePoint& p) {
+            return p == SurfacePoint::at_vertex(w) ||
+                   (p.kind == geodesic::PointKind::edge && std::min(v, w) == p.edge_v0 && std::max(v, w) == p.edge_v1);
+        };
+        // A vertex of G that faces u across one edge is a neighbour of one of u's neighbours.
         for (OpenMesh::VertexHandle c : coarse.vv_range(u))
             for (OpenMesh::VertexHandle d : coarse.vv_range(c))
-                if (d != u && g.location(d) == SurfacePoint::at_vertex(w) && join_for(g, u, d, changed, mend))
-                    return true;
+                if (d != u && on_edge_to_w(g.location(d)) && join_for(g, u, d, changed, mend)) return true;
     }
     return false;
 }
