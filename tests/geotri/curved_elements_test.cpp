@@ -425,21 +425,27 @@ TEST(CurveAdaptively, elements_across_the_creases_of_a_cad_part_are_mended) {
             << "face " << element.face.idx();
 }
 
+/// curve_adaptively() on the flipped G of bundled mesh `relative`, checking on the way that G is valid before, and
+/// after with T's area, and that only splits add faces (two each).
+CurveAdaptResult curve_bundled_mesh(const std::string& relative, const std::string& name) {
+    GeodesicTriangulation g = test::traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/" + relative, name, false);
+    untangle_and_flip(g);
+    EXPECT_TRUE(validate(g).valid) << name;
+    const std::size_t faces_before = g.coarse().n_faces();
+    CurveAdaptResult r = curve_adaptively(g);
+    EXPECT_EQ(g.coarse().n_faces(), faces_before + 2 * static_cast<std::size_t>(r.splits)) << name;
+    test::expect_valid_with_area(g);
+    return r;
+}
+
 // A gear of flat faces meeting at right angles: an element whose patch reaches over a crease or past a corner, if
 // only by a sliver that a geodesic passing the corner leaves, is flat on one side and meets the other side's faces
 // edge-on, at every size; bisection never took those out (17 elements failing of 4760 after 20 rounds). Vertices
 // of G on T's vertices there do, and leave G valid.
 TEST(CurveAdaptively, elements_that_fold_over_the_corners_of_a_gear_are_mended_by_vertices_on_them) {
-    GeodesicTriangulation g =
-        test::traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/pinion.off", "pinion", false);
-    untangle_and_flip(g);
-    ASSERT_TRUE(validate(g).valid);
-    const std::size_t faces_before = g.coarse().n_faces();
-    const CurveAdaptResult r = curve_adaptively(g);
+    const CurveAdaptResult r = curve_bundled_mesh("cad/pinion.off", "pinion");
     EXPECT_EQ(r.failing, 0);
     EXPECT_FALSE(r.round_cap_reached);
-    EXPECT_EQ(g.coarse().n_faces(), faces_before + 2 * static_cast<std::size_t>(r.splits));
-    test::expect_valid_with_area(g);
     const CurveAdaptOptions defaults;
     for (const CurvedElement& element : r.curved.elements)
         EXPECT_TRUE(element.passes(defaults.min_quality, defaults.tolerance * r.curved.diagonal))
@@ -447,17 +453,10 @@ TEST(CurveAdaptively, elements_that_fold_over_the_corners_of_a_gear_are_mended_b
 }
 
 // On joint, an element folds where a vertex of G stands on T's vertex already: an edge of G is flipped to join it to
-// the next fold vertex along an edge of T. Flips and moves keep the face count, and G stays valid.
+// the next fold vertex along an edge of T. Flips keep the face count, and G stays valid.
 TEST(CurveAdaptively, flips_that_join_vertices_of_g_along_edges_of_t_keep_g_valid) {
-    GeodesicTriangulation g =
-        test::traced_in_classes(std::string(GEOTRI_TEST_DATA) + "/cad/joint.off", "joint", false);
-    untangle_and_flip(g);
-    ASSERT_TRUE(validate(g).valid);
-    const std::size_t faces_before = g.coarse().n_faces();
-    const CurveAdaptResult r = curve_adaptively(g);
+    const CurveAdaptResult r = curve_bundled_mesh("cad/joint.off", "joint");
     EXPECT_GT(r.flips, 0);
-    EXPECT_EQ(g.coarse().n_faces(), faces_before + 2 * static_cast<std::size_t>(r.splits));
-    test::expect_valid_with_area(g);
     const CurveAdaptOptions defaults;
     int failing = 0;
     for (const CurvedElement& element : r.curved.elements)
