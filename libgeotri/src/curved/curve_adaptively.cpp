@@ -153,8 +153,8 @@ bool join_along_fold(GeodesicTriangulation& g, OpenMesh::FaceHandle h, int v,
     OpenMesh::VertexHandle u;
     for (OpenMesh::VertexHandle c : coarse.fv_range(h))
         if (g.location(c) == SurfacePoint::at_vertex(v)) u = c;
+    const auto edges = mesh.outgoing_halfedges(v);
     for (const auto& [bend, w] : fold) {
-        const auto edges = mesh.outgoing_halfedges(v);
         if (std::none_of(edges.begin(), edges.end(), [&, w = w](int e) { return mesh.head(e) == w; })) continue;
         auto on_edge_to_w = [&, w = w](const SurfacePoint& p) {
             return p == SurfacePoint::at_vertex(w) ||
