@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -113,11 +114,13 @@ int run(tools::Tool& tool) {
     const double max_distance = options.tolerance * r.curved.diagonal;
     int plane_valid = 0, surface_valid = 0;
     double worst_quality = 1.0, largest_distance = 0.0;
+    std::vector<const geotri::CurvedElement*> failing;  // named in the report
     for (const geotri::CurvedElement& element : r.curved.elements) {
         plane_valid += element.certificate.plane == geotri::Certification::valid;
         surface_valid += element.certificate.surface == geotri::Certification::valid;
         worst_quality = std::min(worst_quality, element.certificate.quality_lower);
         largest_distance = std::max(largest_distance, element.certificate.distance / r.curved.diagonal);
+        if (!element.passes(options.min_quality, max_distance)) failing.push_back(&element);
     }
     if (tool.common.json) {
         tools::JsonSummary summary;
@@ -131,19 +134,18 @@ int run(tools::Tool& tool) {
         summary.add("certified_surface", surface_valid);
         summary.add("failing", r.failing);
         // Each failing element by its coarse face (element face + 1 of the .msh file), with its certificate.
-        std::vector<tools::JsonSummary> failing;
-        for (const geotri::CurvedElement& element : r.curved.elements) {
-            if (element.passes(options.min_quality, max_distance)) continue;
-            const geotri::ElementCertificate& c = element.certificate;
+        std::vector<tools::JsonSummary> failures;
+        for (const geotri::CurvedElement* element : failing) {
+            const geotri::ElementCertificate& c = element->certificate;
             tools::JsonSummary failure;
-            failure.add("face", element.face.idx());
+            failure.add("face", element->face.idx());
             failure.add("plane", geotri::to_string(c.plane));
             failure.add("surface", geotri::to_string(c.surface));
             failure.add("quality", c.quality_lower);
             failure.add("distance", c.distance / r.curved.diagonal);
-            failing.push_back(std::move(failure));
+            failures.push_back(std::move(failure));
         }
-        summary.add("failing_elements", failing);
+        summary.add("failing_elements", failures);
         summary.add("min_quality", worst_quality);
         summary.add("max_distance", largest_distance);
         summary.add("tolerance", options.tolerance);
@@ -169,19 +171,13 @@ int run(tools::Tool& tool) {
                          no_adapt              ? "--no-adapt"
                          : r.round_cap_reached ? "the round cap was reached"
                                                : "no change of G mends them");
-            int shown = 0;
-            for (const geotri::CurvedElement& element : r.curved.elements) {
-                if (element.passes(options.min_quality, max_distance)) continue;
-                if (shown++ == 8) {
-                    std::fprintf(stderr, " ...");
-                    break;
-                }
-                const geotri::ElementCertificate& c = element.certificate;
+            for (std::size_t i = 0; i < std::min<std::size_t>(failing.size(), 8); ++i) {
+                const geotri::ElementCertificate& c = failing[i]->certificate;
                 std::fprintf(stderr, " face %d (plane %s, surface %s, quality >= %.3g, distance <= %.3g)",
-                             element.face.idx(), geotri::to_string(c.plane), geotri::to_string(c.surface),
+                             failing[i]->face.idx(), geotri::to_string(c.plane), geotri::to_string(c.surface),
                              c.quality_lower, c.distance / r.curved.diagonal);
             }
-            std::fprintf(stderr, "\n");
+            std::fprintf(stderr, "%s\n", failing.size() > 8 ? " ..." : "");
         }
     }
     return r.failing == 0 ? tools::k_exit_ok : k_exit_uncertified;

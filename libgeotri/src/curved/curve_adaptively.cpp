@@ -87,6 +87,12 @@ CreaseCrossing crease_crossing(const GeodesicTriangulation& g, OpenMesh::EdgeHan
     return best_turn > total_turn - best_turn ? best : CreaseCrossing{};
 }
 
+/// Whether face h is as the round found it: `changed` flags the faces of G at the start of the round that a change
+/// touched, and a face that a split made since lies beyond it (its element is not in the cache yet).
+bool unchanged(const std::vector<char>& changed, OpenMesh::FaceHandle h) {
+    return static_cast<std::size_t>(h.idx()) < changed.size() && !changed[static_cast<std::size_t>(h.idx())];
+}
+
 /// One change of G made to mend a failing element: the faces whose elements it changed (those that the change
 /// rebuilt, by handle) and the vertex of G that it made, moved, or joined to another by a flip.
 struct Mend {
@@ -133,9 +139,7 @@ bool join_for(GeodesicTriangulation& g, OpenMesh::VertexHandle u, OpenMesh::Vert
         const OpenMesh::HalfedgeHandle across = coarse.opposite_halfedge_handle(coarse.next_halfedge_handle(h));
         if (coarse.is_boundary(across) || coarse.to_vertex_handle(coarse.next_halfedge_handle(across)) != w) continue;
         const std::array<OpenMesh::FaceHandle, 2> faces{coarse.face_handle(h), coarse.face_handle(across)};
-        for (OpenMesh::FaceHandle face : faces)  // a face that a split made this round lies beyond `changed`
-            if (static_cast<std::size_t>(face.idx()) >= changed.size() || changed[static_cast<std::size_t>(face.idx())])
-                return false;
+        if (!unchanged(changed, faces[0]) || !unchanged(changed, faces[1])) return false;
         if (!flip(g, coarse.edge_handle(across)).accepted()) return false;
         mend = {{faces[0], faces[1]}, u, Mend::Kind::flip};
         return true;
@@ -203,13 +207,10 @@ bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, Open
     for (OpenMesh::VertexHandle c : coarse.fv_range(f))
         for (OpenMesh::FaceHandle n : coarse.vf_range(c))
             if (std::find(around.begin(), around.end(), n) == around.end()) around.push_back(n);
-    auto unchanged = [&](OpenMesh::FaceHandle h) {
-        return static_cast<std::size_t>(h.idx()) < changed.size() && !changed[static_cast<std::size_t>(h.idx())];
-    };
     for (const auto& [bend, v] : fold) {
         const SurfacePoint at = SurfacePoint::at_vertex(v);
         const auto holder = std::find_if(around.begin(), around.end(), [&](OpenMesh::FaceHandle h) {
-            if (!unchanged(h)) return false;  // a face made this round has no element in the cache yet
+            if (!unchanged(changed, h)) return false;
             const std::vector<int>& held = detail::element_geometry(cache, h).patch_vertices;
             return std::binary_search(held.begin(), held.end(), v);
         });
@@ -229,7 +230,7 @@ bool mend_fold(GeodesicTriangulation& g, const detail::ElementCache& cache, Open
             const auto point = std::find(line.begin() + 1, line.end() - 1, at);
             if (point == line.end() - 1) continue;
             on_side = true;
-            if (unchanged(coarse.opposite_face_handle(side)) &&
+            if (unchanged(changed, coarse.opposite_face_handle(side)) &&
                 split_edge_for(g, coarse.edge_handle(side), static_cast<std::size_t>(point - line.begin()), mend))
                 return true;
         }
